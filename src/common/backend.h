@@ -1,0 +1,52 @@
+// The interface every back end implements (cpu: serial reference; host: device code on OpenMP; cuda).
+// A back end owns the particle arrays in its own layout and runs the phases of one step, in this order:
+//   predict -> build grid -> density -> pressure -> forces -> correct -> boundaries -> recycle
+// (emission is requested by the Simulation between steps through emit()).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "params.h"
+#include "particle_state.h"
+
+namespace sph {
+
+enum class Phase : int { Predict, BuildGrid, Density, Pressure, Forces, Correct, Boundaries, Recycle, Emit, Count };
+const char* phase_name(Phase p);
+
+// Accumulated wall time per phase, for the runner's summary, the benchmark and the demo panel.
+struct PhaseTimes {
+  std::array<double, int(Phase::Count)> seconds{};
+  long steps = 0;
+};
+
+// What the driver needs after each step: the adaptive time step and the blow-up check.
+struct Diagnostics {
+  float max_speed = 0.0f;
+  float max_accel = 0.0f;
+  int32_t fastest = -1;      // index of the fastest particle
+  int32_t non_finite = -1;   // index of a particle with a NaN or infinite position or velocity, or -1
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string name() const = 0;
+  virtual void upload(const ParticleState& state) = 0;   // replaces the particles
+  virtual void initialise_forces() = 0;                   // accelerations of the uploaded state, no motion
+  virtual void step(float dt) = 0;
+  virtual void emit(const std::vector<Spawn>& spawns) = 0;
+  virtual const ParticleState& download() = 0;            // current particles, in the back end's order
+  virtual std::size_t size() const = 0;
+  virtual Diagnostics diagnose() = 0;
+  virtual const PhaseTimes& phase_times() const = 0;
+};
+
+using BackendFactory = std::function<std::unique_ptr<Backend>(const SimConstants&)>;
+
+}  // namespace sph

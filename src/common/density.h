@@ -1,0 +1,37 @@
+// Phase "density": density (summation or continuity) and near density of one particle.
+// Shared by every back end; the back end decides how the loop over particles is scheduled.
+#pragma once
+
+#include "grid.h"
+#include "kernels.h"
+#include "params.h"
+
+namespace sph {
+
+// Summation, thesis eq. 2.10: rho_a = sum_b m_b W_poly6(r_ab), the particle itself included.
+// Continuity, thesis eq. 2.12: rho_a += dt * sum_b m_b (v_a - v_b) . grad W_ab (grad of Spiky).
+// Near density, thesis 3.1: rho_near_a = sum_b m_b W_near(r_ab).
+SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a,
+                              float dt) {
+  const KernelCoeffs& k = c.kernel;
+  const Vec3 xa = p.pos[a];
+  const Vec3 va = p.vel_force[a];
+  const bool summation = c.density == DensityMethod::Summation;
+  float rho = 0.0f, rho_near = 0.0f, drho = 0.0f;
+  for_each_candidate(grid, xa, [&](int32_t b) {
+    const Vec3 xab = xa - p.pos[b];
+    const float r2 = length2(xab);
+    if (r2 >= k.h2) return;
+    const float mb = c.fluids[p.fluid[b]].mass;
+    if (summation) rho += mb * poly6(k, r2);
+    if (c.near_enabled || !summation) {
+      const float r = sqrtf(r2);
+      if (c.near_enabled) rho_near += mb * near_kernel(k, r);
+      if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(va - p.vel_force[b], xab);
+    }
+  });
+  p.density[a] = summation ? rho : p.density[a] + dt * drho;
+  p.near_density[a] = rho_near;
+}
+
+}  // namespace sph

@@ -1,0 +1,89 @@
+// Phase "forces": acceleration of one particle from pressure and near pressure, viscosity, surface
+// tension and external forces; also the XSPH velocity correction when enabled. Every pair term is written
+// so that the pair (a, b) and the pair (b, a) give equal and opposite momentum changes for equal masses
+// and viscosities (tests/test_conservation.cpp).
+#pragma once
+
+#include "grid.h"
+#include "kernels.h"
+#include "params.h"
+
+namespace sph {
+
+// Pressure (and near pressure) pair term, returned as the scalar s with a_a += s * grad W.
+// Monaghan symmetric, thesis eq. 2.18 divided by rho_a: -m_b (P_a / rho_a^2 + P_b / rho_b^2).
+// Mueller, thesis eq. 2.19 divided by rho_a: -m_b (P_a + P_b) / (2 rho_a rho_b).
+SPH_HD inline float pressure_pair(PressureForm form, float mb, float pa, float rhoa, float pb, float rhob) {
+  if (form == PressureForm::MonaghanSymmetric) return -mb * (pa / (rhoa * rhoa) + pb / (rhob * rhob));
+  return -mb * (pa + pb) / (2.0f * rhoa * rhob);
+}
+
+SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a) {
+  if (p.age[a] < 0.0f) {  // inlet particle: kinematic until it leaves the inlet (thesis 4.1.6)
+    p.acc[a] = Vec3{0.0f, 0.0f, 0.0f};
+    if (c.xsph_enabled) p.xsph_dv[a] = Vec3{0.0f, 0.0f, 0.0f};
+    return;
+  }
+  const KernelCoeffs& k = c.kernel;
+  const FluidConstants& fa = c.fluids[p.fluid[a]];
+  const Vec3 xa = p.pos[a];
+  const Vec3 va = p.vel_force[a];
+  const float rhoa = p.density[a];
+  const float pa = p.pressure[a];
+  const float pna = p.near_pressure[a];
+  const float eps2 = 0.01f * k.h2;  // keeps Morris and artificial viscosity finite as r -> 0
+  Vec3 acc{0.0f, 0.0f, 0.0f};
+  Vec3 dv{0.0f, 0.0f, 0.0f};
+  for_each_candidate(grid, xa, [&](int32_t b) {
+    if (b == a) return;
+    const Vec3 xab = xa - p.pos[b];
+    const float r2 = length2(xab);
+    if (r2 >= k.h2 || r2 <= 0.0f) return;  // coincident particles have no direction to push along
+    const float r = sqrtf(r2);
+    const FluidConstants& fb = c.fluids[p.fluid[b]];
+    const float mb = fb.mass;
+    const float rhob = p.density[b];
+    const Vec3 vab = va - p.vel_force[b];
+    const float grad = spiky_grad_fac(k, r);  // grad W_ab = grad * xab
+
+    float s = pressure_pair(c.pressure_form, mb, pa, rhoa, p.pressure[b], rhob) * grad;
+    if (c.near_enabled)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
+      s += pressure_pair(c.pressure_form, mb, pna, rhoa, p.near_pressure[b], rhob) * near_grad_fac(k, r);
+
+    switch (c.viscosity) {
+      case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
+        acc -= (fa.viscosity * mb * viscosity_laplacian(k, r) / (rhoa * rhob)) * vab;
+        break;
+      case ViscosityModel::Morris:  // Morris 1997: sum m_b (mu_a + mu_b)/(rho_a rho_b) (x_ab.gradW)/(r^2+eps^2) v_ab
+        acc += (mb * (fa.viscosity + fb.viscosity) * grad * r2 / (rhoa * rhob * (r2 + eps2))) * vab;
+        break;
+      case ViscosityModel::Artificial: {  // thesis eq. 2.20-2.22 (beta = 0), approaching pairs only
+        const float vx = dot(vab, xab);
+        if (vx < 0.0f) {
+          const float mu_ab = k.h * vx / (r2 + eps2);
+          const float alpha = 0.5f * (fa.artificial_alpha + fb.artificial_alpha);
+          const float cbar = 0.5f * (fa.speed_of_sound + fb.speed_of_sound);
+          const float pi_ab = -alpha * cbar * mu_ab / (0.5f * (rhoa + rhob));
+          s -= mb * pi_ab * grad;
+        }
+        break;
+      }
+      case ViscosityModel::None:
+        break;
+    }
+    acc += s * xab;
+
+    if (c.surface_tension_enabled) {  // Becker & Teschner 2007 cohesion, thesis eq. 3.12
+      const float kappa = 0.5f * (fa.surface_tension + fb.surface_tension);
+      acc -= (kappa * mb / fa.mass * poly6(k, r2)) * xab;
+    }
+    if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
+      dv -= (fa.xsph * mb * poly6(k, r2) / (0.5f * (rhoa + rhob))) * vab;
+    }
+  });
+  acc += c.gravity;  // external force, thesis eq. 2.25
+  p.acc[a] = acc;
+  if (c.xsph_enabled) p.xsph_dv[a] = dv;
+}
+
+}  // namespace sph

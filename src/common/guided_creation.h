@@ -1,0 +1,40 @@
+// Guided creation (thesis 4.1.4 and 4.1.5): from the user's volumes, physical properties and resolution,
+// derive the spacing, the smoothing length h from the mean neighbour count, the particle masses, the grid,
+// and the initial particles.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "emitters.h"
+#include "particle_state.h"
+#include "scene.h"
+
+namespace sph {
+
+struct Setup {
+  SimConstants constants{};
+  ParticleState particles;         // instant emitters plus the jets' prefilled inlets
+  std::vector<JetEmitter> jets;
+  double spacing = 0.0;            // d
+  double h = 0.0;                  // support radius
+  double lattice_density = 0.0;    // sum_b W_poly6 over a cubic lattice of spacing d, times d^3
+  double max_speed_of_sound = 0.0;
+  double max_kinematic_viscosity = 0.0;
+  double blowup_speed = 0.0;       // speeds above this stop the run
+  double expected_particles = 0.0; // instant particles plus the jets' steady state
+  int32_t next_id = 0;
+};
+
+// Support radius from the mean neighbour count, thesis eq. 4.1: h = cbrt(3 V n_avg / (4 pi N)), with
+// V / N = d^3 for particles on a cubic lattice of spacing d.
+double smoothing_length(double spacing, double neighbours);
+
+// sum over the cubic lattice of spacing d of W_poly6(|x|, h), times d^3 (1 for a perfect quadrature).
+double lattice_density_factor(double spacing, double h);
+
+// Throws SceneError when the scene cannot be set up (no particle fits an emitter, too many particles for
+// this machine's memory, grid too large, ...).
+Setup create_setup(const Scene& scene, double run_time);
+
+}  // namespace sph

@@ -1,0 +1,34 @@
+// Raw-pointer views of particle and grid arrays: trivially copyable, so the same struct is passed to a CUDA
+// kernel, an OpenMP loop or the serial reference loop. Memory is owned elsewhere (ParticleState on the
+// host, a RAII device buffer on the GPU).
+#pragma once
+
+#include <cstdint>
+
+#include "params.h"
+#include "vec3.h"
+
+namespace sph {
+
+struct ParticleView {
+  int32_t n;
+  Vec3* pos;
+  Vec3* vel;            // the integrator's velocity state
+  Vec3* vel_force;      // the velocity the forces see (differs per integrator, see integrate.h)
+  Vec3* acc;            // last computed acceleration
+  Vec3* xsph_dv;        // XSPH velocity correction from the forces pass (only when enabled)
+  float* density;
+  float* near_density;
+  float* pressure;
+  float* near_pressure;
+  float* age;           // time since birth; < 0 while a jet particle is still in its inlet (kinematic)
+  uint8_t* fluid;       // index into SimConstants::fluids
+  int32_t* id;          // stable particle identity, survives reordering
+};
+
+struct GridView {
+  GridGeometry geom;
+  const int32_t* cell_start;  // ncells + 1 entries; cell c holds particles [cell_start[c], cell_start[c+1])
+};
+
+}  // namespace sph

@@ -1,0 +1,118 @@
+// A scene as the user describes it (JSON, scenes/*.json): physical properties, emitters, boundaries and
+// method choices by name. Loading validates everything and fills defaults (scene_loader.cpp); guided
+// creation (guided_creation.h) turns it into simulation constants and particles.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "params.h"
+
+namespace sph {
+
+using Vec3d = std::array<double, 3>;
+
+// Every problem with a scene file or an override is reported as a SceneError naming the file and the key.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct FluidSpec {
+  std::string name = "water";
+  double rest_density = 1000.0;    // kg/m^3
+  double speed_of_sound = 20.0;    // m/s (numerical, far below water's 1500: thesis 3.2)
+  double viscosity = 1e-3;         // Pa s (Mueller and Morris viscosity)
+  double artificial_viscosity = 0.0;  // alpha (Monaghan artificial viscosity)
+  double near_stiffness = 0.0;     // k_near, m^2/s^2; 0 = no double density relaxation
+  double surface_tension = 0.0;    // Becker-Teschner cohesion coefficient; 0 = off
+  double xsph = 0.0;               // XSPH epsilon; 0 = off
+};
+
+enum class EmitterType { Box, Sphere, Jet };
+enum class JetSection { Circle, Square };
+
+struct EmitterSpec {
+  EmitterType type = EmitterType::Box;
+  int fluid = 0;
+  Vec3d min{}, max{};              // box
+  Vec3d center{};                  // sphere
+  double radius = 0.0;             // sphere radius, circular jet radius, square jet half side
+  Vec3d velocity{};                // box, sphere: initial velocity
+  // jet (thesis 4.1.4 "circle / square flow", 4.1.6 inlet flow)
+  JetSection section = JetSection::Circle;
+  Vec3d position{};                // centre of the outlet (the "real birth position")
+  Vec3d direction{1.0, 0.0, 0.0};  // unit vector after loading
+  double speed = 0.0;
+  double lifetime = 0.0;           // recycle particles older than this [s]; 0 = never
+  double inlet_length = -1.0;      // < 0: 4 h (thesis 4.1.6)
+  double start = 0.0;
+  double stop = std::numeric_limits<double>::infinity();
+
+  // Smallest extent of the fluid this emitter creates, used by resolution.particles_across.
+  double min_extent() const;
+};
+
+struct BoundarySpec {
+  Shape shape{};  // type, coefficients and geometry, ready for SimConstants
+};
+
+enum class TimeStepMode { Fixed, Adaptive };
+enum class MassRule { RestDensity, Volume };
+
+struct TimeStepSpec {
+  TimeStepMode mode = TimeStepMode::Adaptive;
+  double dt = 1e-3;               // fixed step, and the first step of an adaptive run
+  double min = 1e-7;
+  double max = 1e-2;
+  double cfl_velocity = 0.4;      // dt <= C_v h / v_max (thesis 2.3.5)
+  double cfl_acceleration = 0.25; // dt <= C_a sqrt(h / a_max)
+  double cfl_sound = 0.4;         // dt <= C_c h / (c0 + v_max)
+  double cfl_viscosity = 0.125;   // dt <= C_nu h^2 / nu
+};
+
+struct Scene {
+  std::string name = "unnamed";
+  std::string description;
+  std::string source;  // file it came from, for messages
+
+  std::vector<FluidSpec> fluids;
+  std::vector<EmitterSpec> emitters;
+  std::vector<BoundarySpec> boundaries;
+
+  // Resolution (thesis 4.1.4): either particles across the first emitter's smallest extent, or a spacing.
+  int particles_across = 0;
+  double spacing = 0.0;
+  double neighbours = 32.0;            // n_avg, thesis 4.1.5
+  MassRule mass_rule = MassRule::RestDensity;
+
+  DensityMethod density = DensityMethod::Summation;
+  EquationOfState eos = EquationOfState::Tait;
+  PressureForm pressure_form = PressureForm::MonaghanSymmetric;
+  ViscosityModel viscosity = ViscosityModel::Mueller;
+  bool clamp_negative_pressure = false;
+  Integrator integrator = Integrator::ModifiedVelocityVerlet;
+  TimeStepSpec time_step;
+  Vec3d gravity{0.0, -9.81, 0.0};
+
+  bool has_domain = false;
+  Vec3d domain_min{}, domain_max{};
+
+  double run_time = 1.0;         // default simulated time for sph_run
+  double frames_every = 0.0;     // 0 = no frames unless asked
+  double max_particles = 2e7;
+  double blowup_speed = 0.0;     // 0 = 10 x the largest speed of sound
+};
+
+// Reads, validates and fills defaults. overrides are "dotted.path=value" strings applied to the JSON
+// before validation (sph_run --set). Throws SceneError with a message naming the file and the key.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+Scene parse_scene(const std::string& json_text, const std::string& source,
+                  const std::vector<std::string>& overrides = {});
+
+// Names accepted for each choice, for messages and --help.
+const char* integrator_name(Integrator m);
+
+}  // namespace sph

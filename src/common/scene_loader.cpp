@@ -1,0 +1,486 @@
+// Scene files: JSON with string names for every choice, defaults in code, strict validation. Unknown keys,
+// unknown names, wrong types, non-finite or out-of-range numbers are errors that name the file and the key.
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "scene.h"
+
+namespace sph {
+namespace {
+
+using json = nlohmann::json;
+
+[[noreturn]] void fail(const std::string& source, const std::string& key, const std::string& what) {
+  throw SceneError(source + ": " + (key.empty() ? std::string() : key + ": ") + what);
+}
+
+// Reads the keys of one JSON object, remembers which were used, and rejects the rest.
+class ObjectReader {
+ public:
+  ObjectReader(const json& j, std::string source, std::string path)
+      : j_(j), source_(std::move(source)), path_(std::move(path)) {
+    if (!j_.is_object()) fail(source_, path_.empty() ? "scene" : path_, "expected a JSON object");
+  }
+
+  bool has(const std::string& key) const { return j_.contains(key); }
+  std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  const json& raw(const std::string& key) {
+    used_.insert(key);
+    return j_.at(key);
+  }
+
+  double number(const std::string& key, double def, double lo, double hi, bool lo_open = false) {
+    if (!has(key)) return def;
+    const json& v = raw(key);
+    if (!v.is_number()) fail(source_, key_path(key), "expected a number, got " + std::string(v.type_name()));
+    const double x = v.get<double>();
+    check_range(key, x, lo, hi, lo_open);
+    return x;
+  }
+
+  void check_range(const std::string& key, double x, double lo, double hi, bool lo_open) const {
+    if (!std::isfinite(x)) fail(source_, key_path(key), "must be a finite number");
+    if (x < lo || (lo_open && x == lo) || x > hi) {
+      std::ostringstream os;
+      os << "value " << x << " is out of range: allowed " << (lo_open ? "(" : "[") << lo << ", " << hi << "]";
+      fail(source_, key_path(key), os.str());
+    }
+  }
+
+  bool boolean(const std::string& key, bool def) {
+    if (!has(key)) return def;
+    const json& v = raw(key);
+    if (!v.is_boolean()) fail(source_, key_path(key), "expected true or false");
+    return v.get<bool>();
+  }
+
+  std::string string(const std::string& key, const std::string& def) {
+    if (!has(key)) return def;
+    const json& v = raw(key);
+    if (!v.is_string()) fail(source_, key_path(key), "expected a string");
+    return v.get<std::string>();
+  }
+
+  template <class E>
+  E choice(const std::string& key, E def, const std::vector<std::pair<std::string, E>>& names) {
+    if (!has(key)) return def;
+    const std::string s = string(key, "");
+    std::string allowed;
+    for (const auto& [name, value] : names) {
+      if (name == s) return value;
+      allowed += (allowed.empty() ? "" : ", ") + ("\"" + name + "\"");
+    }
+    fail(source_, key_path(key), "unknown name \"" + s + "\"; allowed: " + allowed);
+  }
+
+  Vec3d vec3(const std::string& key, Vec3d def, double limit = 1e6) {
+    if (!has(key)) return def;
+    const json& v = raw(key);
+    if (!v.is_array() || v.size() != 3) fail(source_, key_path(key), "expected an array of 3 numbers");
+    Vec3d out{};
+    for (int i = 0; i < 3; ++i) {
+      if (!v[i].is_number()) fail(source_, key_path(key), "expected an array of 3 numbers");
+      out[i] = v[i].get<double>();
+      check_range(key, out[i], -limit, limit, false);
+    }
+    return out;
+  }
+
+  Vec3d required_vec3(const std::string& key) {
+    if (!has(key)) fail(source_, key_path(key), "is required");
+    return vec3(key, {});
+  }
+
+  // Rejects keys that were never read: a typo must not be silently ignored.
+  void finish() const {
+    for (auto it = j_.begin(); it != j_.end(); ++it) {
+      if (used_.count(it.key()) || it.key() == "comment") continue;
+      std::string allowed;
+      for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
+      fail(source_, key_path(it.key()), "unknown key; allowed here: " + allowed);
+    }
+  }
+
+  void allow(std::initializer_list<const char*> keys) {
+    for (const char* k : keys) known_.insert(k);
+  }
+
+  const std::string& source() const { return source_; }
+
+ private:
+  const json& j_;
+  std::string source_;
+  std::string path_;
+  std::set<std::string> used_;
+  std::set<std::string> known_;
+};
+
+constexpr double kHuge = 1e6;  // metres, m/s, ...: larger values are taken as mistakes
+
+FluidSpec read_fluid(ObjectReader& r) {
+  r.allow({"name", "rest_density", "speed_of_sound", "viscosity", "artificial_viscosity", "near_stiffness",
+           "surface_tension", "xsph"});
+  FluidSpec f;
+  f.name = r.string("name", f.name);
+  f.rest_density = r.number("rest_density", f.rest_density, 0.0, 1e5, true);
+  f.speed_of_sound = r.number("speed_of_sound", f.speed_of_sound, 0.0, 1e4, true);
+  f.viscosity = r.number("viscosity", f.viscosity, 0.0, 1e5);
+  f.artificial_viscosity = r.number("artificial_viscosity", f.artificial_viscosity, 0.0, 10.0);
+  f.near_stiffness = r.number("near_stiffness", f.near_stiffness, 0.0, 1e8);
+  f.surface_tension = r.number("surface_tension", f.surface_tension, 0.0, 1e6);
+  f.xsph = r.number("xsph", f.xsph, 0.0, 1.0);
+  r.finish();
+  return f;
+}
+
+int read_fluid_ref(ObjectReader& r, const std::vector<FluidSpec>& fluids) {
+  if (!r.has("fluid")) return 0;
+  const json& v = r.raw("fluid");
+  if (v.is_number_integer()) {
+    const long i = v.get<long>();
+    if (i < 0 || i >= long(fluids.size()))
+      fail(r.source(), r.key_path("fluid"), "index " + std::to_string(i) + " does not name a fluid");
+    return int(i);
+  }
+  if (v.is_string()) {
+    for (std::size_t i = 0; i < fluids.size(); ++i)
+      if (fluids[i].name == v.get<std::string>()) return int(i);
+    fail(r.source(), r.key_path("fluid"), "no fluid named \"" + v.get<std::string>() + "\"");
+  }
+  fail(r.source(), r.key_path("fluid"), "expected a fluid name or index");
+}
+
+Vec3d normalised(const Vec3d& v, const std::string& source, const std::string& key) {
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(n > 0.0)) fail(source, key, "must not be the zero vector");
+  return {v[0] / n, v[1] / n, v[2] / n};
+}
+
+void check_box(const Vec3d& lo, const Vec3d& hi, const std::string& source, const std::string& key) {
+  for (int i = 0; i < 3; ++i)
+    if (!(hi[i] > lo[i])) fail(source, key, "max must be larger than min on every axis");
+}
+
+EmitterSpec read_emitter(ObjectReader& r, const std::vector<FluidSpec>& fluids) {
+  EmitterSpec e;
+  e.type = r.choice<EmitterType>("type", EmitterType::Box,
+                                 {{"box", EmitterType::Box}, {"sphere", EmitterType::Sphere}, {"jet", EmitterType::Jet}});
+  if (!r.has("type")) fail(r.source(), r.key_path("type"), "is required (\"box\", \"sphere\" or \"jet\")");
+  e.fluid = read_fluid_ref(r, fluids);
+  switch (e.type) {
+    case EmitterType::Box:
+      r.allow({"type", "fluid", "min", "max", "velocity"});
+      e.min = r.required_vec3("min");
+      e.max = r.required_vec3("max");
+      check_box(e.min, e.max, r.source(), r.key_path("max"));
+      e.velocity = r.vec3("velocity", e.velocity);
+      break;
+    case EmitterType::Sphere:
+      r.allow({"type", "fluid", "center", "radius", "velocity"});
+      e.center = r.required_vec3("center");
+      if (!r.has("radius")) fail(r.source(), r.key_path("radius"), "is required");
+      e.radius = r.number("radius", 0.0, 0.0, kHuge, true);
+      e.velocity = r.vec3("velocity", e.velocity);
+      break;
+    case EmitterType::Jet:
+      r.allow({"type", "fluid", "section", "position", "direction", "radius", "speed", "lifetime",
+               "inlet_length", "start", "stop"});
+      e.section = r.choice<JetSection>("section", JetSection::Circle,
+                                       {{"circle", JetSection::Circle}, {"square", JetSection::Square}});
+      e.position = r.required_vec3("position");
+      e.direction = normalised(r.vec3("direction", e.direction), r.source(), r.key_path("direction"));
+      if (!r.has("radius")) fail(r.source(), r.key_path("radius"), "is required");
+      e.radius = r.number("radius", 0.0, 0.0, kHuge, true);
+      if (!r.has("speed")) fail(r.source(), r.key_path("speed"), "is required");
+      e.speed = r.number("speed", 0.0, 0.0, 1e4, true);
+      e.lifetime = r.number("lifetime", 0.0, 0.0, 1e6);
+      e.inlet_length = r.number("inlet_length", -1.0, -1.0, kHuge);
+      e.start = r.number("start", 0.0, 0.0, 1e9);
+      e.stop = r.has("stop") ? r.number("stop", 0.0, 0.0, 1e9) : e.stop;
+      if (e.stop <= e.start) fail(r.source(), r.key_path("stop"), "must be later than start");
+      break;
+  }
+  r.finish();
+  return e;
+}
+
+void read_coefficients(ObjectReader& r, Shape& s) {
+  s.bounce = float(r.number("bounce", 0.0, 0.0, 1.0));
+  s.slip = float(r.number("slip", 1.0, 0.0, 1.0));
+  s.energy_conserving = r.boolean("energy_conserving", true) ? 1 : 0;
+}
+
+Vec3 to_vec3(const Vec3d& v) { return Vec3{float(v[0]), float(v[1]), float(v[2])}; }
+
+BoundarySpec read_boundary(ObjectReader& r) {
+  BoundarySpec b;
+  Shape& s = b.shape;
+  s.type = r.choice<ShapeType>("type", ShapeType::Box,
+                               {{"box", ShapeType::Box}, {"plane", ShapeType::Plane}, {"sphere", ShapeType::Sphere},
+                                {"quadric", ShapeType::Quadric}});
+  if (!r.has("type")) fail(r.source(), r.key_path("type"), "is required (\"box\", \"plane\", \"sphere\" or \"quadric\")");
+  read_coefficients(r, s);
+  switch (s.type) {
+    case ShapeType::Box: {
+      r.allow({"type", "bounce", "slip", "energy_conserving", "min", "max", "inside", "open_top"});
+      const Vec3d lo = r.required_vec3("min"), hi = r.required_vec3("max");
+      check_box(lo, hi, r.source(), r.key_path("max"));
+      s.a = to_vec3(lo);
+      s.b = to_vec3(hi);
+      s.keep_inside = r.boolean("inside", true);
+      s.open_top = r.boolean("open_top", false);
+      break;
+    }
+    case ShapeType::Plane:
+      r.allow({"type", "bounce", "slip", "energy_conserving", "point", "normal"});
+      s.a = to_vec3(r.required_vec3("point"));
+      if (!r.has("normal")) fail(r.source(), r.key_path("normal"), "is required");
+      s.b = to_vec3(normalised(r.vec3("normal", {}), r.source(), r.key_path("normal")));
+      break;
+    case ShapeType::Sphere:
+      r.allow({"type", "bounce", "slip", "energy_conserving", "center", "radius", "inside"});
+      s.a = to_vec3(r.required_vec3("center"));
+      if (!r.has("radius")) fail(r.source(), r.key_path("radius"), "is required");
+      s.radius = float(r.number("radius", 0.0, 0.0, kHuge, true));
+      s.keep_inside = r.boolean("inside", true);
+      break;
+    case ShapeType::Quadric: {
+      r.allow({"type", "bounce", "slip", "energy_conserving", "matrix"});
+      if (!r.has("matrix")) fail(r.source(), r.key_path("matrix"), "is required (4x4 symmetric, fluid where p^T Q p >= 0)");
+      const json& m = r.raw("matrix");
+      const std::string key = r.key_path("matrix");
+      if (!m.is_array() || m.size() != 4) fail(r.source(), key, "expected 4 rows of 4 numbers");
+      for (int i = 0; i < 4; ++i) {
+        if (!m[i].is_array() || m[i].size() != 4) fail(r.source(), key, "expected 4 rows of 4 numbers");
+        for (int j = 0; j < 4; ++j) {
+          if (!m[i][j].is_number() || !std::isfinite(m[i][j].get<double>()))
+            fail(r.source(), key, "expected 4 rows of 4 finite numbers");
+          s.q[4 * i + j] = float(m[i][j].get<double>());
+        }
+      }
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < i; ++j)
+          if (std::fabs(s.q[4 * i + j] - s.q[4 * j + i]) > 1e-6f * (1.0f + std::fabs(s.q[4 * i + j])))
+            fail(r.source(), key, "the matrix must be symmetric");
+      break;
+    }
+  }
+  r.finish();
+  return b;
+}
+
+// "a.b.2.c=value": value is parsed as JSON, or taken as a string when it is not valid JSON.
+void apply_override(json& root, const std::string& text, const std::string& source) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError(source + ": --set \"" + text + "\": expected key=value (for example fluids.0.viscosity=0.01)");
+  const std::string path = text.substr(0, eq);
+  const std::string value_text = text.substr(eq + 1);
+  json value = json::parse(value_text, nullptr, false);
+  if (value.is_discarded()) value = value_text;
+  json* node = &root;
+  std::stringstream ss(path);
+  std::string part;
+  std::vector<std::string> parts;
+  while (std::getline(ss, part, '.')) parts.push_back(part);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string& p = parts[i];
+    if (p.empty()) throw SceneError(source + ": --set \"" + text + "\": empty key in path");
+    const bool last = i + 1 == parts.size();
+    if (node->is_array()) {
+      char* end = nullptr;
+      const long idx = std::strtol(p.c_str(), &end, 10);
+      if (*end != '\0' || idx < 0 || idx >= long(node->size()))
+        throw SceneError(source + ": --set \"" + text + "\": \"" + p + "\" is not an index of that array (size " +
+                         std::to_string(node->size()) + ")");
+      node = &(*node)[std::size_t(idx)];
+    } else if (node->is_object()) {
+      if (!last && !node->contains(p)) (*node)[p] = json::object();
+      node = &(*node)[p];
+    } else {
+      throw SceneError(source + ": --set \"" + text + "\": \"" + p + "\" is inside a value that is not an object");
+    }
+    if (last) *node = value;
+  }
+}
+
+}  // namespace
+
+double EmitterSpec::min_extent() const {
+  switch (type) {
+    case EmitterType::Box:
+      return std::min({max[0] - min[0], max[1] - min[1], max[2] - min[2]});
+    case EmitterType::Sphere:
+    case EmitterType::Jet:
+      return 2.0 * radius;
+  }
+  return 0.0;
+}
+
+const char* integrator_name(Integrator m) {
+  switch (m) {
+    case Integrator::ExplicitEuler: return "explicit_euler";
+    case Integrator::SemiImplicitEuler: return "semi_implicit_euler";
+    case Integrator::VelocityVerlet: return "velocity_verlet";
+    case Integrator::ModifiedVelocityVerlet: return "modified_velocity_verlet";
+    case Integrator::Leapfrog: return "leapfrog";
+  }
+  return "?";
+}
+
+Scene parse_scene(const std::string& text, const std::string& source, const std::vector<std::string>& overrides) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw SceneError(source + ": not valid JSON: " + e.what());
+  }
+  for (const auto& o : overrides) apply_override(root, o, source);
+
+  Scene s;
+  s.source = source;
+  ObjectReader r(root, source, "");
+  r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "integrator",
+           "time_step", "gravity", "domain", "run", "limits"});
+  s.name = r.string("name", s.name);
+  s.description = r.string("description", "");
+
+  if (!r.has("fluids")) fail(source, "fluids", "is required: a list of fluids (at least one)");
+  const json& fl = r.raw("fluids");
+  if (!fl.is_array() || fl.empty()) fail(source, "fluids", "expected a non-empty list of fluid objects");
+  if (fl.size() > std::size_t(kMaxFluids))
+    fail(source, "fluids", "at most " + std::to_string(kMaxFluids) + " fluids are supported");
+  for (std::size_t i = 0; i < fl.size(); ++i) {
+    ObjectReader fr(fl[i], source, "fluids." + std::to_string(i));
+    s.fluids.push_back(read_fluid(fr));
+  }
+
+  if (!r.has("emitters")) fail(source, "emitters", "is required: a list of emitters (box, sphere, jet)");
+  const json& em = r.raw("emitters");
+  if (!em.is_array() || em.empty()) fail(source, "emitters", "expected a non-empty list of emitter objects");
+  for (std::size_t i = 0; i < em.size(); ++i) {
+    ObjectReader er(em[i], source, "emitters." + std::to_string(i));
+    s.emitters.push_back(read_emitter(er, s.fluids));
+  }
+
+  if (r.has("boundaries")) {
+    const json& bd = r.raw("boundaries");
+    if (!bd.is_array()) fail(source, "boundaries", "expected a list of boundary objects");
+    if (bd.size() > std::size_t(kMaxShapes))
+      fail(source, "boundaries", "at most " + std::to_string(kMaxShapes) + " boundaries are supported");
+    for (std::size_t i = 0; i < bd.size(); ++i) {
+      ObjectReader br(bd[i], source, "boundaries." + std::to_string(i));
+      s.boundaries.push_back(read_boundary(br));
+    }
+  }
+
+  if (!r.has("resolution")) fail(source, "resolution", "is required: {\"particles_across\": N} or {\"spacing\": metres}");
+  {
+    ObjectReader rr(r.raw("resolution"), source, "resolution");
+    rr.allow({"particles_across", "spacing", "neighbours", "mass"});
+    const bool across = rr.has("particles_across"), spacing = rr.has("spacing");
+    if (across == spacing) fail(source, "resolution", "give exactly one of particles_across and spacing");
+    if (across) {
+      const json& v = rr.raw("particles_across");
+      if (!v.is_number_integer()) fail(source, "resolution.particles_across", "expected a whole number");
+      const long n = v.get<long>();
+      if (n < 2 || n > 100000)
+        fail(source, "resolution.particles_across", "value " + std::to_string(n) + " is out of range: allowed [2, 100000]");
+      s.particles_across = int(n);
+    } else {
+      s.spacing = rr.number("spacing", 0.0, 0.0, kHuge, true);
+    }
+    s.neighbours = rr.number("neighbours", s.neighbours, 4.0, 500.0);
+    s.mass_rule = rr.choice<MassRule>("mass", s.mass_rule,
+                                      {{"rest_density", MassRule::RestDensity}, {"volume", MassRule::Volume}});
+    rr.finish();
+  }
+
+  if (r.has("sph")) {
+    ObjectReader sr(r.raw("sph"), source, "sph");
+    sr.allow({"density", "equation_of_state", "pressure_force", "viscosity", "negative_pressure"});
+    s.density = sr.choice<DensityMethod>("density", s.density,
+                                         {{"summation", DensityMethod::Summation}, {"continuity", DensityMethod::Continuity}});
+    s.eos = sr.choice<EquationOfState>("equation_of_state", s.eos,
+                                       {{"tait", EquationOfState::Tait}, {"ideal", EquationOfState::Ideal}});
+    s.pressure_form = sr.choice<PressureForm>(
+        "pressure_force", s.pressure_form, {{"monaghan", PressureForm::MonaghanSymmetric}, {"mueller", PressureForm::Mueller}});
+    s.viscosity = sr.choice<ViscosityModel>("viscosity", s.viscosity,
+                                            {{"none", ViscosityModel::None},
+                                             {"mueller", ViscosityModel::Mueller},
+                                             {"morris", ViscosityModel::Morris},
+                                             {"artificial", ViscosityModel::Artificial}});
+    s.clamp_negative_pressure = sr.choice<bool>("negative_pressure", false, {{"keep", false}, {"clamp", true}});
+    sr.finish();
+  }
+
+  s.integrator = r.choice<Integrator>("integrator", s.integrator,
+                                      {{"explicit_euler", Integrator::ExplicitEuler},
+                                       {"semi_implicit_euler", Integrator::SemiImplicitEuler},
+                                       {"velocity_verlet", Integrator::VelocityVerlet},
+                                       {"modified_velocity_verlet", Integrator::ModifiedVelocityVerlet},
+                                       {"leapfrog", Integrator::Leapfrog}});
+
+  if (r.has("time_step")) {
+    ObjectReader tr(r.raw("time_step"), source, "time_step");
+    tr.allow({"mode", "dt", "min", "max", "cfl_velocity", "cfl_acceleration", "cfl_sound", "cfl_viscosity"});
+    TimeStepSpec& t = s.time_step;
+    t.mode = tr.choice<TimeStepMode>("mode", t.mode, {{"fixed", TimeStepMode::Fixed}, {"adaptive", TimeStepMode::Adaptive}});
+    t.dt = tr.number("dt", t.dt, 0.0, 10.0, true);
+    t.min = tr.number("min", t.min, 0.0, 10.0, true);
+    t.max = tr.number("max", t.max, 0.0, 10.0, true);
+    if (t.min > t.max) fail(source, "time_step.min", "must not exceed time_step.max");
+    t.cfl_velocity = tr.number("cfl_velocity", t.cfl_velocity, 0.0, 10.0, true);
+    t.cfl_acceleration = tr.number("cfl_acceleration", t.cfl_acceleration, 0.0, 10.0, true);
+    t.cfl_sound = tr.number("cfl_sound", t.cfl_sound, 0.0, 10.0, true);
+    t.cfl_viscosity = tr.number("cfl_viscosity", t.cfl_viscosity, 0.0, 10.0, true);
+    tr.finish();
+  }
+
+  s.gravity = r.vec3("gravity", s.gravity, 1e4);
+
+  if (r.has("domain")) {
+    ObjectReader dr(r.raw("domain"), source, "domain");
+    dr.allow({"min", "max"});
+    s.domain_min = dr.required_vec3("min");
+    s.domain_max = dr.required_vec3("max");
+    check_box(s.domain_min, s.domain_max, source, "domain.max");
+    s.has_domain = true;
+    dr.finish();
+  }
+
+  if (r.has("run")) {
+    ObjectReader rr(r.raw("run"), source, "run");
+    rr.allow({"time", "frames_every"});
+    s.run_time = rr.number("time", s.run_time, 0.0, 1e7, true);
+    s.frames_every = rr.number("frames_every", s.frames_every, 0.0, 1e7);
+    rr.finish();
+  }
+
+  if (r.has("limits")) {
+    ObjectReader lr(r.raw("limits"), source, "limits");
+    lr.allow({"max_particles", "blowup_speed"});
+    s.max_particles = lr.number("max_particles", s.max_particles, 1.0, 2e9);
+    s.blowup_speed = lr.number("blowup_speed", s.blowup_speed, 0.0, 1e8);
+    lr.finish();
+  }
+  r.finish();
+  return s;
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path + ": cannot open the scene file (does it exist and is it readable?)");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  if (in.bad()) throw SceneError(path + ": error while reading the file");
+  return parse_scene(buf.str(), path, overrides);
+}
+
+}  // namespace sph

@@ -1,0 +1,49 @@
+// The driver shared by the runner, the tests, the benchmark and the demo: guided creation, time step
+// choice, emission, and the blow-up check around a back end's step().
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "backend.h"
+#include "guided_creation.h"
+#include "scene.h"
+#include "time_step.h"
+
+namespace sph {
+
+// The simulation became unstable: NaN, or a speed above the blow-up bound. The message names the time,
+// the step and the particle, and suggests what to change.
+struct BlowUp : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Simulation {
+ public:
+  Simulation(const Scene& scene, const BackendFactory& factory, double run_time);
+
+  // One time step; throws BlowUp when the state has become unphysical.
+  void advance();
+
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  double last_dt() const { return last_dt_; }
+  StepLimit last_limit() const { return last_limit_; }
+  const Setup& setup() const { return setup_; }
+  const Scene& scene() const { return scene_; }
+  Backend& backend() { return *backend_; }
+  const ParticleState& particles() { return backend_->download(); }
+
+ private:
+  Scene scene_;
+  Setup setup_;
+  std::unique_ptr<Backend> backend_;
+  Diagnostics diag_;
+  double time_ = 0.0;
+  long steps_ = 0;
+  double last_dt_ = 0.0;
+  StepLimit last_limit_ = StepLimit::Fixed;
+};
+
+}  // namespace sph

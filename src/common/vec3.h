@@ -1,0 +1,36 @@
+// A three-component float vector usable on host and device. Single precision everywhere, so the serial
+// reference and the device back ends round the same way.
+#pragma once
+
+#include <cmath>
+
+#include "sph_hd.h"
+
+namespace sph {
+
+struct Vec3 {
+  float x, y, z;
+};
+
+SPH_HD inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+SPH_HD inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+SPH_HD inline Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
+SPH_HD inline Vec3 operator*(float s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+SPH_HD inline Vec3 operator*(Vec3 a, float s) { return {s * a.x, s * a.y, s * a.z}; }
+SPH_HD inline Vec3& operator+=(Vec3& a, Vec3 b) {
+  a.x += b.x;
+  a.y += b.y;
+  a.z += b.z;
+  return a;
+}
+SPH_HD inline Vec3& operator-=(Vec3& a, Vec3 b) {
+  a.x -= b.x;
+  a.y -= b.y;
+  a.z -= b.z;
+  return a;
+}
+SPH_HD inline float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+SPH_HD inline float length2(Vec3 a) { return dot(a, a); }
+SPH_HD inline float length(Vec3 a) { return sqrtf(dot(a, a)); }
+
+}  // namespace sph

@@ -1,0 +1,50 @@
+// The serial reference back end: plain loops over particles, one phase per function, no threads.
+// The physics of every phase is the shared per-particle code of src/common/; this file only schedules it.
+#pragma once
+
+#include <vector>
+
+#include "../common/backend.h"
+#include "../common/particle_state.h"
+
+namespace sph {
+
+class CpuBackend final : public Backend {
+ public:
+  explicit CpuBackend(const SimConstants& constants) : c_(constants) {}
+
+  std::string name() const override { return "cpu"; }
+  void upload(const ParticleState& state) override { s_ = state; }
+  void initialise_forces() override;
+  void step(float dt) override;
+  void emit(const std::vector<Spawn>& spawns) override;
+  const ParticleState& download() override { return s_; }
+  std::size_t size() const override { return s_.size(); }
+  Diagnostics diagnose() override;
+  const PhaseTimes& phase_times() const override { return times_; }
+
+  // Phases, public so tests can run them one at a time and compare back ends phase by phase.
+  void predict(float dt);
+  void build_grid();
+  void density(float dt);
+  void pressure();
+  void forces();
+  void correct(float dt);
+  void boundaries(float dt);
+  void recycle();
+
+  GridView grid_view() const { return GridView{c_.grid, cell_start_.data()}; }
+  const SimConstants& constants() const { return c_; }
+  ParticleState& state() { return s_; }
+
+ private:
+  SimConstants c_;
+  ParticleState s_;
+  ParticleState sorted_;              // reorder target, swapped with s_
+  std::vector<int32_t> cell_start_;   // ncells + 1
+  std::vector<int32_t> particle_cell_;
+  std::vector<int32_t> next_slot_;
+  PhaseTimes times_;
+};
+
+}  // namespace sph
