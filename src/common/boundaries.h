@@ -126,9 +126,20 @@ SPH_HD inline void collide_shape(const Shape& s, Vec3& x, Vec3& v, float dt) {
   }
 }
 
-// Phase "boundaries" for one particle: every shape in scene order.
+// Whether x lies outside the shape's allowed region (only planes absorb; see Shape::absorb).
+SPH_HD inline bool crossed_plane(const Shape& s, Vec3 x) { return dot(x - s.a, s.b) < 0.0f; }
+
+// Phase "boundaries" for one particle: every shape in scene order. An absorbing plane marks the particle
+// for removal instead of reflecting it.
 SPH_HD inline void boundaries_of(const SimConstants& c, const ParticleView& p, int32_t i, float dt) {
-  for (int32_t s = 0; s < c.num_shapes; ++s) collide_shape(c.shapes[s], p.pos[i], p.vel[i], dt);
+  for (int32_t s = 0; s < c.num_shapes; ++s) {
+    const Shape& shape = c.shapes[s];
+    if (shape.absorb && crossed_plane(shape, p.pos[i])) {
+      p.age[i] = kRemovedAge;
+      return;
+    }
+    collide_shape(shape, p.pos[i], p.vel[i], dt);
+  }
 }
 
 }  // namespace sph

@@ -74,7 +74,7 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
     acc += s * xab;
 
     if (c.surface_tension_enabled) {  // Becker & Teschner 2007 cohesion, thesis eq. 3.12
-      const float kappa = 0.5f * (fa.surface_tension + fb.surface_tension);
+      const float kappa = 0.5f * (fa.cohesion + fb.cohesion);
       acc -= (kappa * mb / fa.mass * poly6(k, r2)) * xab;
     }
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab

@@ -26,6 +26,10 @@ double lattice_density_factor(double d, double h) {
   return sum * d * d * d;
 }
 
+double cohesion_from_surface_tension(double sigma, double mass, double rest_density, double h) {
+  return sigma * mass / ((315.0 / 61440.0) * rest_density * rest_density * h * h * h);
+}
+
 namespace {
 
 Vec3 f3(const Vec3d& v) { return Vec3{float(v[0]), float(v[1]), float(v[2])}; }
@@ -136,7 +140,7 @@ Setup create_setup(const Scene& scene, double run_time) {
     fc.viscosity = float(f.viscosity);
     fc.artificial_alpha = float(f.artificial_viscosity);
     fc.near_stiffness = float(f.near_stiffness);
-    fc.surface_tension = float(f.surface_tension);
+    fc.cohesion = float(cohesion_from_surface_tension(f.surface_tension, fc.mass, f.rest_density, s.h));
     fc.xsph = float(f.xsph);
     fc.lifetime = 0.0f;
     if (f.near_stiffness > 0.0) c.near_enabled = 1;

@@ -33,6 +33,12 @@ double smoothing_length(double spacing, double neighbours);
 // sum over the cubic lattice of spacing d of W_poly6(|x|, h), times d^3 (1 for a perfect quadrature).
 double lattice_density_factor(double spacing, double h);
 
+// Becker-Teschner cohesion a_a = -kappa sum_b (m_b / m_a) x_ab W_poly6 read as a pair potential with
+// u'(r) = kappa m r W(r): on a uniform fluid of density rho0 its Kirkwood-Buff surface tension is
+// sigma = (pi / 8) (rho0^2 / m) kappa int_0^h r^5 W dr = (315 / 61440) (rho0^2 / m) kappa h^3, so the
+// physical sigma [N/m] of the scene maps to kappa = sigma m / (0.005127 rho0^2 h^3).
+double cohesion_from_surface_tension(double sigma, double mass, double rest_density, double h);
+
 // Throws SceneError when the scene cannot be set up (no particle fits an emitter, too many particles for
 // this machine's memory, grid too large, ...).
 Setup create_setup(const Scene& scene, double run_time);

@@ -6,12 +6,15 @@
 #include <cstdint>
 
 #include "kernels.h"
+#include "sph_hd.h"
 #include "vec3.h"
 
 namespace sph {
 
 constexpr int kMaxFluids = 8;
 constexpr int kMaxShapes = 16;
+// Age given to a particle that an absorbing boundary took out; the recycle phase removes it.
+constexpr float kRemovedAge = 3.0e38f;
 
 enum class DensityMethod : int32_t { Summation, Continuity };        // thesis eq. 2.10 / 2.12
 enum class EquationOfState : int32_t { Tait, Ideal };                // thesis eq. 2.15 / 2.14
@@ -34,10 +37,15 @@ struct FluidConstants {
   float viscosity;         // mu [Pa s] for Mueller and Morris
   float artificial_alpha;  // alpha for Monaghan artificial viscosity
   float near_stiffness;    // k_near [m^2/s^2], P_near = k_near rho_near (thesis 3.1); 0 disables
-  float surface_tension;   // Becker-Teschner cohesion coefficient; 0 disables
+  float cohesion;          // Becker-Teschner cohesion kappa [1/s^2] calibrated from sigma; 0 disables
   float xsph;              // XSPH epsilon; 0 disables
   float lifetime;          // particles older than this are recycled [s]; 0 = never
 };
+
+// Whether the recycle phase removes particle of this age and fluid: lifetime exceeded or absorbed.
+SPH_HD inline bool expired(const FluidConstants& f, float age) {
+  return age >= kRemovedAge || (f.lifetime > 0.0f && age > f.lifetime);
+}
 
 enum class ShapeType : int32_t { Box, Plane, Sphere, Quadric };
 
@@ -49,6 +57,7 @@ struct Shape {
   int32_t keep_inside;   // Box, Sphere: 1 = container (stay inside), 0 = obstacle (stay outside)
   int32_t open_top;      // Box container: no collision with the ceiling (thesis "direction control")
   int32_t energy_conserving;  // scale the reflected normal velocity by d / (|v| dt) (thesis 3.5.1)
+  int32_t absorb;        // particles crossing the shape leave the simulation (an outflow, e.g. the jet's ground)
   float bounce;          // C_bounce in [0, 1]
   float slip;            // C_slip in [0, 1]
   Vec3 a;                // Box: min corner; Plane: a point; Sphere: centre

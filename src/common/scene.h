@@ -27,7 +27,7 @@ struct FluidSpec {
   double viscosity = 1e-3;         // Pa s (Mueller and Morris viscosity)
   double artificial_viscosity = 0.0;  // alpha (Monaghan artificial viscosity)
   double near_stiffness = 0.0;     // k_near, m^2/s^2; 0 = no double density relaxation
-  double surface_tension = 0.0;    // Becker-Teschner cohesion coefficient; 0 = off
+  double surface_tension = 0.0;    // sigma [N/m], Becker-Teschner cohesion calibrated to it; 0 = off
   double xsph = 0.0;               // XSPH epsilon; 0 = off
 };
 

@@ -238,7 +238,8 @@ BoundarySpec read_boundary(ObjectReader& r) {
       break;
     }
     case ShapeType::Plane:
-      r.allow({"type", "bounce", "slip", "energy_conserving", "point", "normal"});
+      r.allow({"type", "bounce", "slip", "energy_conserving", "point", "normal", "absorb"});
+      s.absorb = r.boolean("absorb", false) ? 1 : 0;
       s.a = to_vec3(r.required_vec3("point"));
       if (!r.has("normal")) fail(r.source(), r.key_path("normal"), "is required");
       s.b = to_vec3(normalised(r.vec3("normal", {}), r.source(), r.key_path("normal")));

@@ -95,12 +95,12 @@ void CpuBackend::boundaries(float dt) {
   for (int32_t i = 0; i < p.n; ++i) boundaries_of(c_, p, i, dt);
 }
 
-// Particles older than their fluid's lifetime leave the simulation; their slots are reused by emission.
+// Particles older than their fluid's lifetime, or taken out by an absorbing boundary, leave the
+// simulation; their slots are reused by emission.
 void CpuBackend::recycle() {
   std::size_t n = s_.size();
   for (std::size_t i = 0; i < n;) {
-    const float life = c_.fluids[s_.fluid[i]].lifetime;
-    if (life > 0.0f && s_.age[i] > life) {
+    if (expired(c_.fluids[s_.fluid[i]], s_.age[i])) {
       s_.copy_particle(i, s_, n - 1);
       --n;
     } else {

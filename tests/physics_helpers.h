@@ -1,0 +1,50 @@
+// Helpers shared by the physics tests: running a scene on the serial reference and measuring it.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/scene.h"
+#include "common/simulation.h"
+#include "cpu/cpu_backend.h"
+
+namespace sph_test {
+
+inline sph::BackendFactory cpu_factory() {
+  return [](const sph::SimConstants& c) { return std::make_unique<sph::CpuBackend>(c); };
+}
+
+inline sph::Scene scene_file(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  return sph::load_scene(std::string(SPH_SOURCE_DIR) + "/scenes/" + name, overrides);
+}
+
+// Smallest distance between any two particles (brute force; the tests use small particle counts).
+inline double min_pair_distance(const sph::ParticleState& ps) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    for (std::size_t b = a + 1; b < ps.size(); ++b) {
+      const double dx = ps.pos[a].x - ps.pos[b].x, dy = ps.pos[a].y - ps.pos[b].y, dz = ps.pos[a].z - ps.pos[b].z;
+      best = std::min(best, std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
+  return best;
+}
+
+// Fraction of particles that have another particle closer than `fraction` of the spacing.
+inline double clustered_fraction(const sph::ParticleState& ps, double distance) {
+  std::size_t count = 0;
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    for (std::size_t b = 0; b < ps.size(); ++b) {
+      if (a == b) continue;
+      const double dx = ps.pos[a].x - ps.pos[b].x, dy = ps.pos[a].y - ps.pos[b].y, dz = ps.pos[a].z - ps.pos[b].z;
+      if (dx * dx + dy * dy + dz * dz < distance * distance) {
+        ++count;
+        break;
+      }
+    }
+  return ps.size() ? double(count) / double(ps.size()) : 0.0;
+}
+
+}  // namespace sph_test

@@ -1,0 +1,84 @@
+// Pair forces are antisymmetric, so without gravity and walls the total momentum of the fluid is
+// conserved to round-off: sum_a m_a a_a = 0 for one evaluation, and sum_a m_a v_a stays at its initial
+// value over many steps.
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "common/guided_creation.h"
+#include "physics_helpers.h"
+
+using namespace sph_test;
+
+namespace {
+
+std::string cloud_scene(const std::string& pressure_force, const std::string& viscosity) {
+  return R"({
+    "name": "momentum",
+    "fluids": [ { "rest_density": 1000, "speed_of_sound": 10, "viscosity": 0.05,
+                  "artificial_viscosity": 0.1, "near_stiffness": 1.0, "surface_tension": 0.5, "xsph": 0.1 } ],
+    "emitters": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.05 } ],
+    "resolution": { "spacing": 0.01 },
+    "sph": { "pressure_force": ")" + pressure_force + R"(", "viscosity": ")" + viscosity + R"(" },
+    "time_step": { "mode": "fixed", "dt": 2e-4 },
+    "gravity": [0, 0, 0]
+  })";
+}
+
+// Jitters positions and gives random velocities so that every pair term is exercised unevenly.
+sph::ParticleState disorder(sph::ParticleState ps, double spacing) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const float j = float(0.3 * spacing);
+    ps.pos[i] += sph::Vec3{j * u(rng), j * u(rng), j * u(rng)};
+    ps.vel[i] = sph::Vec3{0.5f * u(rng), 0.5f * u(rng), 0.5f * u(rng)};
+  }
+  return ps;
+}
+
+struct Totals {
+  double momentum[3] = {0, 0, 0};
+  double scale = 0.0;  // sum of |m q| over particles, the size against which round-off is judged
+};
+
+template <class Field>
+Totals total(const sph::ParticleState& ps, const sph::SimConstants& c, Field field) {
+  Totals t;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const double m = c.fluids[ps.fluid[i]].mass;
+    const sph::Vec3 q = field(ps, i);
+    t.momentum[0] += m * q.x;
+    t.momentum[1] += m * q.y;
+    t.momentum[2] += m * q.z;
+    t.scale += m * sph::length(q);
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("symmetric pair forces conserve linear momentum", "[conservation]") {
+  const auto [pressure_force, viscosity] = GENERATE(table<std::string, std::string>({{"monaghan", "mueller"},
+                                                                                     {"monaghan", "artificial"},
+                                                                                     {"mueller", "morris"},
+                                                                                     {"mueller", "none"}}));
+  const sph::Scene scene = sph::parse_scene(cloud_scene(pressure_force, viscosity), "momentum");
+  const sph::Setup setup = sph::create_setup(scene, 1.0);
+  sph::CpuBackend cpu(setup.constants);
+  cpu.upload(disorder(setup.particles, setup.spacing));
+  cpu.initialise_forces();
+  INFO("pressure force " << pressure_force << ", viscosity " << viscosity << ", " << cpu.size() << " particles");
+
+  // One evaluation: the forces sum to zero up to float round-off of the pair sums.
+  const Totals f = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.acc[i]; });
+  for (double component : f.momentum) CHECK(std::fabs(component) < 1e-5 * f.scale);
+
+  // Many steps: momentum stays where it started (XSPH and every pair term are antisymmetric too).
+  const Totals p0 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
+  for (int step = 0; step < 200; ++step) cpu.step(2e-4f);
+  const Totals p1 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
+  for (int k = 0; k < 3; ++k) CHECK(std::fabs(p1.momentum[k] - p0.momentum[k]) < 1e-4 * p0.scale);
+}
