@@ -10,11 +10,15 @@
 namespace sph {
 
 // Reflects v at a wall with unit normal n (pointing into the allowed region) after a penetration of depth.
-SPH_HD inline void reflect_velocity(const Shape& s, Vec3 n, float depth, Vec3& v, float dt) {
+// The particle is put back on the surface, which moves it by depth along n against gravity g; the normal
+// speed reflected is the one it had when it crossed the surface, v_n^2 + 2 (g.n) depth, so an elastic
+// wall returns exactly the energy that arrived instead of adding m |g.n| depth at every contact.
+SPH_HD inline void reflect_velocity(const Shape& s, Vec3 n, float depth, Vec3& v, float dt, Vec3 g) {
   const float vn = dot(v, n);
   if (vn >= 0.0f) return;  // already leaving the wall
-  const Vec3 v_normal = vn * n;
-  const Vec3 v_tangent = v - v_normal;
+  const Vec3 v_tangent = v - vn * n;
+  const float vn2_at_surface = vn * vn + 2.0f * dot(g, n) * depth;
+  const Vec3 v_normal = (-sqrtf(vn2_at_surface > 0.0f ? vn2_at_surface : 0.0f)) * n;
   float bounce = s.bounce;
   if (s.energy_conserving) {
     const float travel = length(v) * dt;
@@ -24,9 +28,9 @@ SPH_HD inline void reflect_velocity(const Shape& s, Vec3 n, float depth, Vec3& v
 }
 
 // Moves x by depth along n back to the surface and reflects v.
-SPH_HD inline void penalty_response(const Shape& s, Vec3 n, float depth, Vec3& x, Vec3& v, float dt) {
+SPH_HD inline void penalty_response(const Shape& s, Vec3 n, float depth, Vec3& x, Vec3& v, float dt, Vec3 g) {
   x += depth * n;
-  reflect_velocity(s, n, depth, v, dt);
+  reflect_velocity(s, n, depth, v, dt, g);
 }
 
 SPH_HD inline float quadric_value(const float* q, Vec3 p) {
@@ -47,7 +51,7 @@ SPH_HD inline Vec3 quadric_gradient(const float* q, Vec3 p) {
 }
 
 // Box: per axis, so a particle leaving through an edge or a corner is handled on each axis it crossed.
-SPH_HD inline void collide_box(const Shape& s, Vec3& x, Vec3& v, float dt) {
+SPH_HD inline void collide_box(const Shape& s, Vec3& x, Vec3& v, float dt, Vec3 g) {
   if (s.keep_inside) {
     const float lo[3] = {s.a.x, s.a.y, s.a.z};
     const float hi[3] = {s.b.x, s.b.y, s.b.z};
@@ -62,7 +66,7 @@ SPH_HD inline void collide_box(const Shape& s, Vec3& x, Vec3& v, float dt) {
         depth = xi - hi[axis];
         (axis == 0 ? n.x : (axis == 1 ? n.y : n.z)) = -1.0f;
       }
-      if (depth > 0.0f) penalty_response(s, n, depth, x, v, dt);
+      if (depth > 0.0f) penalty_response(s, n, depth, x, v, dt, g);
     }
     return;
   }
@@ -76,27 +80,28 @@ SPH_HD inline void collide_box(const Shape& s, Vec3& x, Vec3& v, float dt) {
   const float sign = (best % 2 == 0) ? -1.0f : 1.0f;
   Vec3 n{0.0f, 0.0f, 0.0f};
   (best / 2 == 0 ? n.x : (best / 2 == 1 ? n.y : n.z)) = sign;
-  penalty_response(s, n, d[best], x, v, dt);
+  penalty_response(s, n, d[best], x, v, dt, g);
 }
 
-SPH_HD inline void collide_shape(const Shape& s, Vec3& x, Vec3& v, float dt) {
+// g: the gravity acceleration (see reflect_velocity); zero when only the geometry matters.
+SPH_HD inline void collide_shape(const Shape& s, Vec3& x, Vec3& v, float dt, Vec3 g = Vec3{0.0f, 0.0f, 0.0f}) {
   switch (s.type) {
     case ShapeType::Box:
-      collide_box(s, x, v, dt);
+      collide_box(s, x, v, dt, g);
       break;
     case ShapeType::Plane: {
       const float phi = dot(x - s.a, s.b);
-      if (phi < 0.0f) penalty_response(s, s.b, -phi, x, v, dt);
+      if (phi < 0.0f) penalty_response(s, s.b, -phi, x, v, dt, g);
       break;
     }
     case ShapeType::Sphere: {
       const Vec3 rel = x - s.a;
       const float dist = length(rel);
       if (s.keep_inside) {
-        if (dist > s.radius) penalty_response(s, (-1.0f / dist) * rel, dist - s.radius, x, v, dt);
+        if (dist > s.radius) penalty_response(s, (-1.0f / dist) * rel, dist - s.radius, x, v, dt, g);
       } else if (dist < s.radius) {
         const Vec3 n = dist > 0.0f ? (1.0f / dist) * rel : Vec3{0.0f, 1.0f, 0.0f};
-        penalty_response(s, n, s.radius - dist, x, v, dt);
+        penalty_response(s, n, s.radius - dist, x, v, dt, g);
       }
       break;
     }
@@ -108,19 +113,19 @@ SPH_HD inline void collide_shape(const Shape& s, Vec3& x, Vec3& v, float dt) {
       float f = quadric_value(s.q, y);
       if (f >= 0.0f) break;
       for (int iter = 0; iter < 8 && f < 0.0f; ++iter) {
-        const Vec3 g = quadric_gradient(s.q, y);
-        const float gl = length(g);
+        const Vec3 grad = quadric_gradient(s.q, y);
+        const float gl = length(grad);
         if (gl <= 0.0f) break;
-        n = (1.0f / gl) * g;
+        n = (1.0f / gl) * grad;
         y += (-f / gl * 1.0001f + 1e-7f) * n;
         f = quadric_value(s.q, y);
       }
       const float depth = length(y - x);
-      const Vec3 g = quadric_gradient(s.q, y);
-      const float gl = length(g);
-      if (gl > 0.0f) n = (1.0f / gl) * g;
+      const Vec3 grad = quadric_gradient(s.q, y);
+      const float gl = length(grad);
+      if (gl > 0.0f) n = (1.0f / gl) * grad;
       x = y;
-      reflect_velocity(s, n, depth, v, dt);
+      reflect_velocity(s, n, depth, v, dt, g);
       break;
     }
   }
@@ -138,7 +143,7 @@ SPH_HD inline void boundaries_of(const SimConstants& c, const ParticleView& p, i
       p.age[i] = kRemovedAge;
       return;
     }
-    collide_shape(shape, p.pos[i], p.vel[i], dt);
+    collide_shape(shape, p.pos[i], p.vel[i], dt, c.gravity);
   }
 }
 

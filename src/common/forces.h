@@ -10,12 +10,13 @@
 
 namespace sph {
 
-// Pressure (and near pressure) pair term, returned as the scalar s with a_a += s * grad W.
+// Pressure (and near pressure) pair term, returned as the scalar s with a_a += s * grad W; takes the
+// inverse densities so the pair loop divides once per pair.
 // Monaghan symmetric, thesis eq. 2.18 divided by rho_a: -m_b (P_a / rho_a^2 + P_b / rho_b^2).
 // Mueller, thesis eq. 2.19 divided by rho_a: -m_b (P_a + P_b) / (2 rho_a rho_b).
-SPH_HD inline float pressure_pair(PressureForm form, float mb, float pa, float rhoa, float pb, float rhob) {
-  if (form == PressureForm::MonaghanSymmetric) return -mb * (pa / (rhoa * rhoa) + pb / (rhob * rhob));
-  return -mb * (pa + pb) / (2.0f * rhoa * rhob);
+SPH_HD inline float pressure_pair(PressureForm form, float mb, float pa, float inv_rhoa, float pb, float inv_rhob) {
+  if (form == PressureForm::MonaghanSymmetric) return -mb * (pa * inv_rhoa * inv_rhoa + pb * inv_rhob * inv_rhob);
+  return -0.5f * mb * (pa + pb) * inv_rhoa * inv_rhob;
 }
 
 SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a) {
@@ -29,6 +30,7 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
   const Vec3 xa = p.pos[a];
   const Vec3 va = p.vel_force[a];
   const float rhoa = p.density[a];
+  const float inv_rhoa = 1.0f / rhoa;
   const float pa = p.pressure[a];
   const float pna = p.near_pressure[a];
   const float eps2 = 0.01f * k.h2;  // keeps Morris and artificial viscosity finite as r -> 0
@@ -40,22 +42,24 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
     const float r2 = length2(xab);
     if (r2 >= k.h2 || r2 <= 0.0f) return;  // coincident particles have no direction to push along
     const float r = sqrtf(r2);
+    const float inv_r = 1.0f / r;
     const FluidConstants& fb = c.fluids[p.fluid[b]];
     const float mb = fb.mass;
     const float rhob = p.density[b];
+    const float inv_rhob = 1.0f / rhob;
     const Vec3 vab = va - p.vel_force[b];
-    const float grad = spiky_grad_fac(k, r);  // grad W_ab = grad * xab
+    const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
 
-    float s = pressure_pair(c.pressure_form, mb, pa, rhoa, p.pressure[b], rhob) * grad;
+    float s = pressure_pair(c.pressure_form, mb, pa, inv_rhoa, p.pressure[b], inv_rhob) * grad;
     if (c.near_enabled)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
-      s += pressure_pair(c.pressure_form, mb, pna, rhoa, p.near_pressure[b], rhob) * near_grad_fac(k, r);
+      s += pressure_pair(c.pressure_form, mb, pna, inv_rhoa, p.near_pressure[b], inv_rhob) * near_dwdr(k, r) * inv_r;
 
     switch (c.viscosity) {
       case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
-        acc -= (fa.viscosity * mb * viscosity_laplacian(k, r) / (rhoa * rhob)) * vab;
+        acc -= (fa.viscosity * mb * viscosity_laplacian(k, r) * inv_rhoa * inv_rhob) * vab;
         break;
       case ViscosityModel::Morris:  // Morris 1997: sum m_b (mu_a + mu_b)/(rho_a rho_b) (x_ab.gradW)/(r^2+eps^2) v_ab
-        acc += (mb * (fa.viscosity + fb.viscosity) * grad * r2 / (rhoa * rhob * (r2 + eps2))) * vab;
+        acc += (mb * (fa.viscosity + fb.viscosity) * grad * r2 * inv_rhoa * inv_rhob / (r2 + eps2)) * vab;
         break;
       case ViscosityModel::Artificial: {  // thesis eq. 2.20-2.22 (beta = 0), approaching pairs only
         const float vx = dot(vab, xab);

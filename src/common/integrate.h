@@ -6,6 +6,7 @@
 #pragma once
 
 #include "params.h"
+#include "particle_view.h"
 #include "sph_hd.h"
 
 namespace sph {

@@ -64,12 +64,15 @@ SPH_HD inline float spiky(const KernelCoeffs& k, float r) {
   return k.spiky * d * d * d;
 }
 
-// grad Spiky = -45/(pi h^6) (h - r)^2 r_ab / r, returned as fac. r must be > 0.
-SPH_HD inline float spiky_grad_fac(const KernelCoeffs& k, float r) {
+// dW/dr of Spiky: -45/(pi h^6) (h - r)^2. The force loop multiplies by the 1/r it already has.
+SPH_HD inline float spiky_dwdr(const KernelCoeffs& k, float r) {
   if (r >= k.h) return 0.0f;
   const float d = k.h - r;
-  return k.spiky_grad * d * d / r;
+  return k.spiky_grad * d * d;
 }
+
+// grad Spiky = -45/(pi h^6) (h - r)^2 r_ab / r, returned as fac. r must be > 0.
+SPH_HD inline float spiky_grad_fac(const KernelCoeffs& k, float r) { return spiky_dwdr(k, r) / r; }
 
 // Viscosity kernel [Mueller 2003], thesis eq. 2.46:
 // W = 15/(2 pi h^3) (-r^3/(2h^3) + r^2/h^2 + h/(2r) - 1); only its Laplacian is used by the solver.
@@ -93,12 +96,15 @@ SPH_HD inline float near_kernel(const KernelCoeffs& k, float r) {
   return k.near * d * d * d * d;
 }
 
-// grad W_near = -4 * 105/(4 pi h^7) (h - r)^3 r_ab / r, returned as fac. r must be > 0.
-SPH_HD inline float near_grad_fac(const KernelCoeffs& k, float r) {
+// dW/dr of the near kernel: -4 * 105/(4 pi h^7) (h - r)^3.
+SPH_HD inline float near_dwdr(const KernelCoeffs& k, float r) {
   if (r >= k.h) return 0.0f;
   const float d = k.h - r;
-  return k.near_grad * d * d * d / r;
+  return k.near_grad * d * d * d;
 }
+
+// grad W_near = -4 * 105/(4 pi h^7) (h - r)^3 r_ab / r, returned as fac. r must be > 0.
+SPH_HD inline float near_grad_fac(const KernelCoeffs& k, float r) { return near_dwdr(k, r) / r; }
 
 // Cubic spline [Monaghan & Lattanzio 1985] written with THIS project's convention: support radius h
 // (the seed's 2 h_s equals our h). q = r/h:

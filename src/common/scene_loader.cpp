@@ -213,7 +213,7 @@ EmitterSpec read_emitter(ObjectReader& r, const std::vector<FluidSpec>& fluids) 
 void read_coefficients(ObjectReader& r, Shape& s) {
   s.bounce = float(r.number("bounce", 0.0, 0.0, 1.0));
   s.slip = float(r.number("slip", 1.0, 0.0, 1.0));
-  s.energy_conserving = r.boolean("energy_conserving", true) ? 1 : 0;
+  s.energy_conserving = r.boolean("energy_conserving", false) ? 1 : 0;
 }
 
 Vec3 to_vec3(const Vec3d& v) { return Vec3{float(v[0]), float(v[1]), float(v[2])}; }
@@ -339,7 +339,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   json root;
   try {
     root = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors, and numbers out of a double's range
     throw SceneError(source + ": not valid JSON: " + e.what());
   }
   for (const auto& o : overrides) apply_override(root, o, source);
