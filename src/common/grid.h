@@ -56,4 +56,21 @@ SPH_HD inline void for_each_candidate(const GridView& grid, Vec3 p, F&& f) {
   }
 }
 
+// Puts the particles of one cell, order[begin, end), in ascending id order (insertion sort: cells hold a
+// few dozen particles and arrive nearly sorted). Both back ends sort every cell this way after binning,
+// so the particle order, and with it every floating-point sum, depends only on the particle set, not on
+// the previous order or on the timing of atomic operations.
+SPH_HD inline void sort_cell_by_id(int32_t* order, int32_t begin, int32_t end, const int32_t* id) {
+  for (int32_t i = begin + 1; i < end; ++i) {
+    const int32_t moving = order[i];
+    const int32_t key = id[moving];
+    int32_t j = i - 1;
+    while (j >= begin && id[order[j]] > key) {
+      order[j + 1] = order[j];
+      --j;
+    }
+    order[j + 1] = moving;
+  }
+}
+
 }  // namespace sph

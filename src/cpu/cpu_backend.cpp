@@ -48,8 +48,8 @@ void CpuBackend::predict(float dt) {
   for (int32_t i = 0; i < p.n; ++i) predict_particle(c_, p, i, dt);
 }
 
-// Counting sort by cell: count, exclusive prefix sum, fill, then move every array into cell order so that
-// neighbour loops read memory in order. Stable: particles of one cell keep their previous relative order.
+// Counting sort by cell: count, exclusive prefix sum, fill, sort each cell by particle id, then move every
+// array into that order so that neighbour loops read memory in order.
 void CpuBackend::build_grid() {
   const std::size_t n = s_.size();
   const std::size_t ncells = std::size_t(cell_count(c_.grid));
@@ -62,8 +62,13 @@ void CpuBackend::build_grid() {
   }
   for (std::size_t cell = 0; cell < ncells; ++cell) cell_start_[cell + 1] += cell_start_[cell];
   next_slot_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  order_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) order_[std::size_t(next_slot_[std::size_t(particle_cell_[i])]++)] = int32_t(i);
+  for (std::size_t cell = 0; cell < ncells; ++cell)
+    if (cell_start_[cell + 1] - cell_start_[cell] > 1)
+      sort_cell_by_id(order_.data(), cell_start_[cell], cell_start_[cell + 1], s_.id.data());
   sorted_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) sorted_.copy_particle(std::size_t(next_slot_[std::size_t(particle_cell_[i])]++), s_, i);
+  for (std::size_t j = 0; j < n; ++j) sorted_.copy_particle(j, s_, std::size_t(order_[j]));
   std::swap(s_, sorted_);
 }
 

@@ -44,6 +44,7 @@ class CpuBackend final : public Backend {
   std::vector<int32_t> cell_start_;   // ncells + 1
   std::vector<int32_t> particle_cell_;
   std::vector<int32_t> next_slot_;
+  std::vector<int32_t> order_;        // order_[j]: the particle that goes to slot j
   PhaseTimes times_;
 };
 

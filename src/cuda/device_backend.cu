@@ -1,0 +1,285 @@
+// The device back end: the phases of a step as data-parallel loops (thrust::for_each_n over particle or
+// cell indices), the physics from src/common/, the grid by atomic binning. One source, two builds (see
+// device_backend.h): SPH_DEVICE_NS and the factory name are set by the including build.
+//
+// Kernel parameters live in the GPU's constant bank, so the SimConstants each functor carries by value
+// are the simulation parameters in constant memory, read through the constant cache.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <cuda/atomic>
+#include <thrust/count.h>
+#include <thrust/copy.h>
+#include <thrust/execution_policy.h>
+#include <thrust/fill.h>
+#include <thrust/for_each.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/scan.h>
+#include <thrust/transform_reduce.h>
+
+#include "../common/boundaries.h"
+#include "../common/density.h"
+#include "../common/forces.h"
+#include "../common/grid.h"
+#include "../common/integrate.h"
+#include "../common/pressure.h"
+#include "device_arrays.h"
+#include "device_backend.h"
+
+namespace sph {
+namespace SPH_DEVICE_NS {
+
+// One data-parallel loop: f(i) for i in [0, n). A CUDA kernel under nvcc, an OpenMP loop otherwise.
+template <class F>
+void launch(int32_t n, const F& f) {
+  if (n > 0) thrust::for_each_n(thrust::device, thrust::counting_iterator<int32_t>(0), n, f);
+}
+
+// ---- phase functors: each calls the shared per-particle code --------------------------------------------
+
+struct PredictFn {
+  SimConstants c;
+  ParticleView p;
+  float dt;
+  SPH_HD void operator()(int32_t i) const { predict_particle(c, p, i, dt); }
+};
+
+// Grid binning: each particle's cell, and its slot in the cell by an atomic increment of the cell count.
+struct BinFn {
+  GridGeometry g;
+  const Vec3* pos;
+  int32_t* cell_count;
+  int32_t* particle_cell;
+  int32_t* particle_slot;
+  SPH_HD void operator()(int32_t i) const {
+    const int32_t cell = cell_index(g, pos[i]);
+    particle_cell[i] = cell;
+    cuda::atomic_ref<int32_t, cuda::thread_scope_device> count(cell_count[cell]);
+    particle_slot[i] = count.fetch_add(1, cuda::memory_order_relaxed);
+  }
+};
+
+// Scatter: particle i goes to its cell's first index plus its slot.
+struct ScatterFn {
+  const int32_t* cell_start;
+  const int32_t* particle_cell;
+  const int32_t* particle_slot;
+  int32_t* order;
+  SPH_HD void operator()(int32_t i) const { order[cell_start[particle_cell[i]] + particle_slot[i]] = i; }
+};
+
+// The slot order inside a cell depends on atomic timing: sort each cell by particle id (deterministic).
+struct SortCellFn {
+  const int32_t* cell_start;
+  const int32_t* id;
+  int32_t* order;
+  SPH_HD void operator()(int32_t cell) const {
+    const int32_t begin = cell_start[cell], end = cell_start[cell + 1];
+    if (end - begin > 1) sort_cell_by_id(order, begin, end, id);
+  }
+};
+
+struct DensityFn {
+  SimConstants c;
+  GridView g;
+  ParticleView p;
+  float dt;
+  SPH_HD void operator()(int32_t i) const { density_of(c, g, p, i, dt); }
+};
+
+struct PressureFn {
+  SimConstants c;
+  ParticleView p;
+  SPH_HD void operator()(int32_t i) const { pressure_of(c, p, i); }
+};
+
+struct ForcesFn {
+  SimConstants c;
+  GridView g;
+  ParticleView p;
+  SPH_HD void operator()(int32_t i) const { forces_of(c, g, p, i); }
+};
+
+struct CorrectFn {
+  SimConstants c;
+  ParticleView p;
+  float dt;
+  SPH_HD void operator()(int32_t i) const { correct_particle(c, p, i, dt); }
+};
+
+struct BoundariesFn {
+  SimConstants c;
+  ParticleView p;
+  float dt;
+  SPH_HD void operator()(int32_t i) const { boundaries_of(c, p, i, dt); }
+};
+
+struct CopyVelocityFn {
+  ParticleView p;
+  SPH_HD void operator()(int32_t i) const { p.vel_force[i] = p.vel[i]; }
+};
+
+struct KeepFn {
+  SimConstants c;
+  ParticleView p;
+  SPH_HD bool operator()(int32_t i) const { return !expired(c.fluids[p.fluid[i]], p.age[i]); }
+};
+
+// Diagnostics as a deterministic reduction: ties go to the lower index, as in the serial reference.
+struct Diag {
+  float max_speed;
+  int32_t fastest;
+  float max_accel;
+  int32_t non_finite;
+};
+
+struct DiagOfFn {
+  ParticleView p;
+  SPH_HD Diag operator()(int32_t i) const {
+    const Vec3 x = p.pos[i], v = p.vel[i];
+    const float sum = x.x + x.y + x.z + v.x + v.y + v.z;
+    const bool finite = sum - sum == 0.0f;  // false for NaN and infinities
+    return Diag{finite ? length(v) : 0.0f, finite ? i : -1, finite ? length(p.acc[i]) : 0.0f, finite ? -1 : i};
+  }
+};
+
+struct DiagCombineFn {
+  SPH_HD Diag operator()(const Diag& a, const Diag& b) const {
+    Diag r;
+    const bool take_a = a.fastest >= 0 && (b.fastest < 0 || a.max_speed > b.max_speed ||
+                                            (a.max_speed == b.max_speed && a.fastest < b.fastest));
+    r.max_speed = take_a ? a.max_speed : b.max_speed;
+    r.fastest = take_a ? a.fastest : b.fastest;
+    r.max_accel = a.max_accel > b.max_accel ? a.max_accel : b.max_accel;
+    r.non_finite = a.non_finite < 0 ? b.non_finite : (b.non_finite < 0 || a.non_finite < b.non_finite ? a.non_finite : b.non_finite);
+    return r;
+  }
+};
+
+// ---- the back end -----------------------------------------------------------------------------------------
+
+class DeviceBackend final : public Backend {
+ public:
+  DeviceBackend(const SimConstants& constants, std::string name) : c_(constants), name_(std::move(name)) {}
+
+  std::string name() const override { return name_; }
+  void upload(const ParticleState& state) override { d_.upload(state); }
+  std::size_t size() const override { return d_.size(); }
+  const PhaseTimes& phase_times() const override { return times_; }
+
+  void initialise_forces() override {
+    launch(n(), CopyVelocityFn{d_.view()});
+    build_grid();
+    density(0.0f);
+    pressure();
+    forces();
+  }
+
+  void step(float dt) override {
+    timed(Phase::Predict, [&] { launch(n(), PredictFn{c_, d_.view(), dt}); });
+    timed(Phase::BuildGrid, [&] { build_grid(); });
+    timed(Phase::Density, [&] { density(dt); });
+    timed(Phase::Pressure, [&] { pressure(); });
+    timed(Phase::Forces, [&] { forces(); });
+    timed(Phase::Correct, [&] { launch(n(), CorrectFn{c_, d_.view(), dt}); });
+    timed(Phase::Boundaries, [&] {
+      if (c_.num_shapes > 0) launch(n(), BoundariesFn{c_, d_.view(), dt});
+    });
+    timed(Phase::Recycle, [&] { recycle(); });
+    ++times_.steps;
+  }
+
+  void emit(const std::vector<Spawn>& spawns) override {
+    timed(Phase::Emit, [&] {
+      ParticleState extra;
+      for (const Spawn& s : spawns) extra.append(s);
+      d_.append(extra);
+    });
+  }
+
+  const ParticleState& download() override {
+    d_.download(host_);
+    return host_;
+  }
+
+  Diagnostics diagnose() override {
+    Diagnostics out;
+    if (n() == 0) return out;
+    const Diag r = thrust::transform_reduce(thrust::device, thrust::counting_iterator<int32_t>(0),
+                                            thrust::counting_iterator<int32_t>(n()), DiagOfFn{d_.view()},
+                                            Diag{0.0f, -1, 0.0f, -1}, DiagCombineFn{});
+    out.max_speed = r.max_speed;
+    out.fastest = r.fastest;
+    out.max_accel = r.max_accel;
+    out.non_finite = r.non_finite;
+    return out;
+  }
+
+ private:
+  int32_t n() const { return int32_t(d_.size()); }
+  int32_t ncells() const { return int32_t(cell_count(c_.grid)); }
+  GridView grid_view() const { return GridView{c_.grid, thrust::raw_pointer_cast(cell_start_.data())}; }
+
+  template <class F>
+  void timed(Phase p, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    times_.seconds[std::size_t(p)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  // Count per cell with atomics, exclusive scan, scatter, sort each cell by id, reorder every array.
+  void build_grid() {
+    const int32_t count = n();
+    cell_count_.assign(std::size_t(ncells()) + 1, 0);
+    particle_cell_.resize(std::size_t(count));
+    particle_slot_.resize(std::size_t(count));
+    order_.resize(std::size_t(count));
+    launch(count, BinFn{c_.grid, thrust::raw_pointer_cast(d_.pos.data()), thrust::raw_pointer_cast(cell_count_.data()),
+                        thrust::raw_pointer_cast(particle_cell_.data()), thrust::raw_pointer_cast(particle_slot_.data())});
+    cell_start_.resize(cell_count_.size());
+    thrust::exclusive_scan(thrust::device, cell_count_.begin(), cell_count_.end(), cell_start_.begin());
+    launch(count, ScatterFn{thrust::raw_pointer_cast(cell_start_.data()), thrust::raw_pointer_cast(particle_cell_.data()),
+                            thrust::raw_pointer_cast(particle_slot_.data()), thrust::raw_pointer_cast(order_.data())});
+    launch(ncells(), SortCellFn{thrust::raw_pointer_cast(cell_start_.data()), thrust::raw_pointer_cast(d_.id.data()),
+                                thrust::raw_pointer_cast(order_.data())});
+    sorted_.gather_from(d_, order_);
+    std::swap(d_, sorted_);
+  }
+
+  void density(float dt) { launch(n(), DensityFn{c_, grid_view(), d_.view(), dt}); }
+  void pressure() { launch(n(), PressureFn{c_, d_.view()}); }
+  void forces() { launch(n(), ForcesFn{c_, grid_view(), d_.view()}); }
+
+  // Keeps the particles that have not expired, in order (a stable compaction: deterministic).
+  void recycle() {
+    const int32_t count = n();
+    if (count == 0) return;
+    keep_.resize(std::size_t(count));
+    const auto end = thrust::copy_if(thrust::device, thrust::counting_iterator<int32_t>(0),
+                                     thrust::counting_iterator<int32_t>(count), keep_.begin(), KeepFn{c_, d_.view()});
+    const std::ptrdiff_t kept = end - keep_.begin();
+    if (kept == count) return;
+    keep_.resize(std::size_t(kept));
+    sorted_.gather_from(d_, keep_);
+    std::swap(d_, sorted_);
+  }
+
+  SimConstants c_;
+  std::string name_;
+  DeviceArrays d_, sorted_;
+  thrust::device_vector<int32_t> cell_count_, cell_start_, particle_cell_, particle_slot_, order_, keep_;
+  ParticleState host_;
+  PhaseTimes times_;
+};
+
+}  // namespace SPH_DEVICE_NS
+
+std::unique_ptr<Backend> SPH_DEVICE_FACTORY(const SimConstants& constants) {
+  SPH_DEVICE_PREPARE();
+  return std::make_unique<SPH_DEVICE_NS::DeviceBackend>(constants, SPH_DEVICE_NAME);
+}
+
+}  // namespace sph

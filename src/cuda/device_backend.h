@@ -1,0 +1,22 @@
+// The device back end, in two builds of one source (device_backend.cu):
+//   "host": compiled by g++ against CCCL with Thrust's OpenMP device system: device code on the host's cores;
+//   "cuda": compiled by nvcc for NVIDIA GPUs.
+// This header is plain C++: no CUDA type appears here, so everything else builds with g++ alone.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "../common/backend.h"
+
+namespace sph {
+
+std::unique_ptr<Backend> make_host_backend(const SimConstants& constants);
+
+// Throws std::runtime_error when no usable GPU is present (the message says why).
+std::unique_ptr<Backend> make_cuda_backend(const SimConstants& constants);
+
+// Whether a CUDA device can be used; otherwise *why says what is missing.
+bool cuda_device_available(std::string* why);
+
+}  // namespace sph

@@ -1,0 +1,37 @@
+// The "cuda" build of the device back end: device_backend.cu compiled by nvcc for NVIDIA GPUs.
+#include <string>
+
+#include "cuda_check.h"
+#include "device_backend.h"
+
+namespace sph {
+
+bool cuda_device_available(std::string* why) {
+  int count = 0;
+  const cudaError_t status = cudaGetDeviceCount(&count);
+  if (status != cudaSuccess) {
+    if (why) *why = std::string("no usable CUDA device: ") + cudaGetErrorString(status);
+    return false;
+  }
+  if (count == 0) {
+    if (why) *why = "no CUDA device found";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+void require_cuda_device() {
+  std::string why;
+  if (!cuda_device_available(&why)) throw std::runtime_error("back end \"cuda\": " + why);
+  CUDA_CHECK(cudaSetDevice(0));
+}
+}  // namespace
+
+}  // namespace sph
+
+#define SPH_DEVICE_NS cuda_device
+#define SPH_DEVICE_FACTORY make_cuda_backend
+#define SPH_DEVICE_NAME "cuda"
+#define SPH_DEVICE_PREPARE() require_cuda_device()
+#include "device_backend.cu"
