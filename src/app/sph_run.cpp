@@ -86,6 +86,12 @@ int run(const Options& o) {
             << "grid: " << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz
             << " cells of " << st.constants.grid.cell_size << " m\n"
             << "integrator: " << integrator_name(scene.integrator) << ", blow-up bound: " << st.blowup_speed << " m/s\n"
+            << (sim.relaxation().ran
+                    ? "relaxation: " + std::to_string(sim.relaxation().steps) + " steps, " +
+                          (sim.relaxation().converged ? "converged" : "NOT converged (max_steps reached)") +
+                          ", final max speed " + std::to_string(sim.relaxation().final_speed) + " m/s (threshold " +
+                          std::to_string(sim.relaxation().threshold) + ")\n"
+                    : std::string())
             << "run: " << (by_steps ? std::to_string(o.steps) + " steps" : std::to_string(run_time) + " s simulated")
             << ", output: " << o.out << "\n";
   std::cout.flush();

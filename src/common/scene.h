@@ -73,6 +73,18 @@ struct TimeStepSpec {
   double cfl_viscosity = 0.125;   // dt <= C_nu h^2 / nu
 };
 
+// Relaxation phase (thesis 4.1.6): before time starts the fluid moves without gravity and with a large
+// viscosity until the largest speed, and the speed one step of the largest acceleration adds, stay below a
+// threshold for three steps; then the run starts from
+// the relaxed positions at rest.
+struct RelaxationSpec {
+  bool enabled = false;
+  double viscosity = 0.0;        // Pa s, Mueller viscosity during relaxation; 0 = rho0 * 0.03 h c0, a tenth
+                                 // of what would make the viscous step limit equal the sound step limit
+  double speed_threshold = 0.0;  // m/s; 0 = 1e-3 c0
+  long max_steps = 5000;
+};
+
 struct Scene {
   std::string name = "unnamed";
   std::string description;
@@ -104,6 +116,7 @@ struct Scene {
   double frames_every = 0.0;     // 0 = no frames unless asked
   double max_particles = 2e7;
   double blowup_speed = 0.0;     // 0 = 10 x the largest speed of sound
+  RelaxationSpec relaxation;
 };
 
 // Reads, validates and fills defaults. overrides are "dotted.path=value" strings applied to the JSON

@@ -348,7 +348,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   s.source = source;
   ObjectReader r(root, source, "");
   r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "integrator",
-           "time_step", "gravity", "domain", "run", "limits"});
+           "time_step", "gravity", "domain", "run", "limits", "relaxation"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -462,6 +462,17 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
     s.run_time = rr.number("time", s.run_time, 0.0, 1e7, true);
     s.frames_every = rr.number("frames_every", s.frames_every, 0.0, 1e7);
     rr.finish();
+  }
+
+  if (r.has("relaxation")) {
+    ObjectReader xr(r.raw("relaxation"), source, "relaxation");
+    xr.allow({"enabled", "viscosity", "speed_threshold", "max_steps"});
+    RelaxationSpec& x = s.relaxation;
+    x.enabled = xr.boolean("enabled", true);
+    x.viscosity = xr.number("viscosity", x.viscosity, 0.0, 1e6);
+    x.speed_threshold = xr.number("speed_threshold", x.speed_threshold, 0.0, 1e4);
+    x.max_steps = long(xr.number("max_steps", double(x.max_steps), 1.0, 1e7));
+    xr.finish();
   }
 
   if (r.has("limits")) {

@@ -1,5 +1,6 @@
 #include "simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -23,9 +24,57 @@ const char* phase_name(Phase p) {
 
 Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double run_time)
     : scene_(scene), setup_(create_setup(scene, run_time)), backend_(factory(setup_.constants)) {
+  if (scene_.relaxation.enabled) relax(factory);
   backend_->upload(setup_.particles);
   backend_->initialise_forces();
   diag_ = backend_->diagnose();
+}
+
+// Thesis 4.1.6: steps that do not advance the simulated time, without gravity and with a large viscosity,
+// until the largest speed (and the speed one step of the largest acceleration adds) stays below the
+// threshold for three steps. The relaxed positions (and, for the
+// continuity method, densities) become the initial state, at rest.
+void Simulation::relax(const BackendFactory& factory) {
+  const RelaxationSpec& spec = scene_.relaxation;
+  SimConstants rc = setup_.constants;
+  rc.gravity = Vec3{0.0f, 0.0f, 0.0f};
+  rc.viscosity = ViscosityModel::Mueller;
+  double nu_max = 0.0;
+  for (int32_t f = 0; f < rc.num_fluids; ++f) {
+    FluidConstants& fc = rc.fluids[f];
+    const double mu = spec.viscosity > 0.0 ? spec.viscosity : fc.rest_density * 0.03 * setup_.h * fc.speed_of_sound;
+    fc.viscosity = float(mu);
+    nu_max = std::max(nu_max, mu / fc.rest_density);
+  }
+  relaxation_.ran = true;
+  relaxation_.threshold = spec.speed_threshold > 0.0 ? spec.speed_threshold : 1e-3 * setup_.max_speed_of_sound;
+  std::unique_ptr<Backend> relaxing = factory(rc);
+  relaxing->upload(setup_.particles);
+  relaxing->initialise_forces();
+  Diagnostics d = relaxing->diagnose();
+  TimeStepSpec ts = scene_.time_step;
+  int quiet = 0;
+  while (relaxation_.steps < spec.max_steps) {
+    const StepChoice choice = choose_time_step(ts, setup_.h, setup_.max_speed_of_sound, nu_max, d.max_speed, d.max_accel);
+    relaxing->step(float(choice.dt));
+    ++relaxation_.steps;
+    d = relaxing->diagnose();
+    if (d.non_finite >= 0) throw BlowUp(scene_.source + ": the relaxation phase became unstable after " +
+                                        std::to_string(relaxation_.steps) + " steps; lower relaxation.viscosity or the time step");
+    // At rest means slow and in balance: a lattice released from rest is slow at first, but its
+    // unbalanced forces (a dt) would soon make it fast.
+    relaxation_.final_speed = std::max(double(d.max_speed), double(d.max_accel) * choice.dt);
+    quiet = relaxation_.final_speed < relaxation_.threshold ? quiet + 1 : 0;
+    if (quiet >= 3) {
+      relaxation_.converged = true;
+      break;
+    }
+  }
+  ParticleState relaxed = relaxing->download();
+  for (std::size_t i = 0; i < relaxed.size(); ++i) {
+    relaxed.vel[i] = relaxed.vel_force[i] = relaxed.acc[i] = Vec3{0.0f, 0.0f, 0.0f};
+  }
+  setup_.particles = std::move(relaxed);
 }
 
 void Simulation::advance() {

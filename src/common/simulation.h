@@ -19,6 +19,15 @@ struct BlowUp : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What the relaxation phase did (thesis 4.1.6), for the runner's report.
+struct RelaxationReport {
+  bool ran = false;
+  bool converged = false;
+  long steps = 0;
+  double final_speed = 0.0;
+  double threshold = 0.0;
+};
+
 class Simulation {
  public:
   Simulation(const Scene& scene, const BackendFactory& factory, double run_time);
@@ -32,6 +41,7 @@ class Simulation {
   StepLimit last_limit() const { return last_limit_; }
   const Setup& setup() const { return setup_; }
   const Scene& scene() const { return scene_; }
+  const RelaxationReport& relaxation() const { return relaxation_; }
   Backend& backend() { return *backend_; }
   const ParticleState& particles() { return backend_->download(); }
 
@@ -40,6 +50,9 @@ class Simulation {
   Setup setup_;
   std::unique_ptr<Backend> backend_;
   Diagnostics diag_;
+  RelaxationReport relaxation_;
+
+  void relax(const BackendFactory& factory);
   double time_ = 0.0;
   long steps_ = 0;
   double last_dt_ = 0.0;
