@@ -37,10 +37,10 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
   Vec3 acc{0.0f, 0.0f, 0.0f};
   Vec3 dv{0.0f, 0.0f, 0.0f};
   for_each_candidate(grid, xa, [&](int32_t b) {
-    if (b == a) return;
     const Vec3 xab = xa - p.pos[b];
     const float r2 = length2(xab);
-    if (r2 >= k.h2 || r2 <= 0.0f) return;  // coincident particles have no direction to push along
+    // r2 = 0: the particle itself, or a coincident one, which has no direction to push along.
+    if (r2 >= k.h2 || r2 <= 0.0f) return;
     const float r = sqrtf(r2);
     const float inv_r = 1.0f / r;
     const FluidConstants& fb = c.fluids[p.fluid[b]];
