@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
-# The main command: install what is missing, build, and run the dam break on the serial reference.
-# Arguments are passed to sph_run (default: the Martin & Moyce dam break for 0.3 s simulated).
+# The main command: install what is missing, build, and start the interactive demo (arguments go to
+# sph_demo; default: the dam break on the host back end). Without a display it renders headless under
+# Xvfb instead and says where the picture is.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 scripts/build.sh >/dev/null
 if [ $# -eq 0 ]; then
-  set -- scenes/dam_break.json --out out/dam_break
+  set -- --scene scenes/dam_break.json --backend host
 fi
-exec build/sph_run "$@"
+if [ -n "${DISPLAY:-}" ]; then
+  exec build/sph_demo "$@"
+fi
+mkdir -p out
+echo "no display: rendering 240 frames headless under Xvfb instead"
+xvfb-run -a -s '-screen 0 1280x720x24' build/sph_demo "$@" --frames 240 --screenshot out/demo.png
+echo "picture: out/demo.png (open it with any image viewer; run scripts/run.sh on a desktop for the live demo)"

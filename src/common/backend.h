@@ -45,6 +45,9 @@ class Backend {
   virtual std::size_t size() const = 0;
   virtual Diagnostics diagnose() = 0;
   virtual const PhaseTimes& phase_times() const = 0;
+  // Replaces the constants between steps (live parameters: viscosity, stiffness, gravity, user force).
+  // The grid geometry must stay the same.
+  virtual void set_constants(const SimConstants& constants) = 0;
 };
 
 using BackendFactory = std::function<std::unique_ptr<Backend>(const SimConstants&)>;

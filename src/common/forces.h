@@ -85,7 +85,13 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
       dv -= (fa.xsph * mb * poly6(k, r2) / (0.5f * (rhoa + rhob))) * vab;
     }
   });
-  acc += c.gravity;  // external force, thesis eq. 2.25
+  acc += c.gravity;  // external forces, thesis eq. 2.25
+  if (c.user_force.strength != 0.0f) {
+    const Vec3 to_point = c.user_force.point - xa;
+    const float dist = length(to_point);
+    if (dist < c.user_force.radius && dist > 0.0f)
+      acc += (c.user_force.strength * (1.0f - dist / c.user_force.radius) / dist) * to_point;
+  }
   p.acc[a] = acc;
   if (c.xsph_enabled) p.xsph_dv[a] = dv;
 }

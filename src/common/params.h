@@ -77,6 +77,14 @@ struct GridGeometry {
   int32_t nx, ny, nz;
 };
 
+// A user force field (thesis eq. 2.25, f_other): an acceleration towards (strength > 0) or away from
+// (strength < 0) a point, fading linearly to zero at the radius. The demo drives it with the mouse.
+struct UserForce {
+  Vec3 point;
+  float radius;
+  float strength;  // m/s^2 at the point; 0 = off
+};
+
 struct SimConstants {
   KernelCoeffs kernel;
   DensityMethod density;
@@ -89,6 +97,7 @@ struct SimConstants {
   int32_t surface_tension_enabled;  // any fluid with surface_tension > 0
   int32_t xsph_enabled;             // any fluid with xsph > 0
   Vec3 gravity;
+  UserForce user_force;
   int32_t num_fluids;
   int32_t num_shapes;
   FluidConstants fluids[kMaxFluids];

@@ -77,6 +77,28 @@ void Simulation::relax(const BackendFactory& factory) {
   setup_.particles = std::move(relaxed);
 }
 
+void Simulation::set_constants(const SimConstants& constants) {
+  setup_.constants = constants;
+  double c_max = 0.0, nu_max = 0.0;
+  for (int32_t f = 0; f < constants.num_fluids; ++f) {
+    c_max = std::max(c_max, double(constants.fluids[f].speed_of_sound));
+    if (constants.viscosity == ViscosityModel::Mueller || constants.viscosity == ViscosityModel::Morris)
+      nu_max = std::max(nu_max, double(constants.fluids[f].viscosity) / constants.fluids[f].rest_density);
+  }
+  setup_.max_speed_of_sound = c_max;
+  setup_.max_kinematic_viscosity = nu_max;
+  backend_->set_constants(constants);
+}
+
+void Simulation::switch_backend(const BackendFactory& factory) {
+  const ParticleState state = backend_->download();
+  std::unique_ptr<Backend> next = factory(setup_.constants);
+  next->upload(state);
+  next->initialise_forces();
+  backend_ = std::move(next);
+  diag_ = backend_->diagnose();
+}
+
 void Simulation::advance() {
   const StepChoice choice = choose_time_step(scene_.time_step, setup_.h, setup_.max_speed_of_sound,
                                              setup_.max_kinematic_viscosity, diag_.max_speed, diag_.max_accel);

@@ -42,8 +42,14 @@ class Simulation {
   const Setup& setup() const { return setup_; }
   const Scene& scene() const { return scene_; }
   const RelaxationReport& relaxation() const { return relaxation_; }
+  TimeStepSpec& time_step() { return scene_.time_step; }  // live edits (the demo)
   Backend& backend() { return *backend_; }
   const ParticleState& particles() { return backend_->download(); }
+
+  // Live changes between steps (the demo): new constants (same grid), or a new back end that carries on
+  // from the current state.
+  void set_constants(const SimConstants& constants);
+  void switch_backend(const BackendFactory& factory);
 
  private:
   Scene scene_;

@@ -22,6 +22,7 @@ class CpuBackend final : public Backend {
   std::size_t size() const override { return s_.size(); }
   Diagnostics diagnose() override;
   const PhaseTimes& phase_times() const override { return times_; }
+  void set_constants(const SimConstants& constants) override { c_ = constants; }
 
   // Phases, public so tests can run them one at a time and compare back ends phase by phase.
   void predict(float dt);

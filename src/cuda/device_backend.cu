@@ -169,6 +169,7 @@ class DeviceBackend final : public Backend {
   void upload(const ParticleState& state) override { d_.upload(state); }
   std::size_t size() const override { return d_.size(); }
   const PhaseTimes& phase_times() const override { return times_; }
+  void set_constants(const SimConstants& constants) override { c_ = constants; }
 
   void initialise_forces() override {
     launch(n(), CopyVelocityFn{d_.view()});

@@ -1,0 +1,445 @@
+// sph_demo: the interactive demo. Runs a scene in real time on a back end and draws it with OpenGL; a
+// Dear ImGui panel shows live statistics and edits parameters. With --frames N --screenshot FILE it renders
+// N frames without input, writes a PNG and exits (headless runs under xvfb-run).
+#include <GL/glew.h>
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "../common/metrics.h"
+#include "../common/simulation.h"
+#include "../render/camera.h"
+#include "../render/particle_renderer.h"
+#include "../render/scene_lines.h"
+#include "../render/screenshot.h"
+#include "../render/ui_panel.h"
+#include "backends.h"
+
+namespace fs = std::filesystem;
+using namespace sph;
+using namespace sph::render;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+struct Options {
+  std::string scene = "scenes/dam_break.json";
+  std::string backend = "host";
+  int frames = 0;
+  std::string screenshot;
+  int width = 1280, height = 720;
+  int substeps = 0;
+  std::string colour = "speed";
+  std::vector<std::string> sets;
+  double budget_ms = 40.0;
+};
+
+class Demo {
+ public:
+  Demo(GLFWwindow* window, const Options& o) : window_(window), opt_(o) {
+    backends_ = available_backends();
+    backend_ = o.backend;
+    // Scenes for [ and ]: every JSON beside the chosen one, the chosen one first.
+    const fs::path dir = fs::path(o.scene).parent_path().empty() ? fs::path(".") : fs::path(o.scene).parent_path();
+    scenes_.push_back(o.scene);
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().extension() == ".json" && fs::absolute(e.path()) != fs::absolute(o.scene)) scenes_.push_back(e.path().string());
+    std::sort(scenes_.begin() + 1, scenes_.end());
+    const char* modes[] = {"fluid", "speed", "density_error", "pressure", "cell"};
+    for (int i = 0; i < int(ColourMode::Count); ++i)
+      if (o.colour == modes[i]) panel_.colour_mode = i;
+    load_scene(0, o.sets);
+    if (o.substeps > 0) panel_.substeps = o.substeps;
+  }
+
+  void load_scene(int index, const std::vector<std::string>& sets = {}) {
+    scene_index_ = (index % int(scenes_.size()) + int(scenes_.size())) % int(scenes_.size());
+    const Scene scene = load_scene_file(scenes_[std::size_t(scene_index_)], sets);
+    sim_ = std::make_unique<Simulation>(scene, backend_factory(backend_), 1e9);
+    base_ = sim_->setup().constants;
+    tilt_x_ = tilt_z_ = 0.0f;
+    const FluidConstants& f = base_.fluids[0];
+    panel_.viscosity = f.viscosity;
+    panel_.speed_of_sound = f.speed_of_sound;
+    panel_.near_stiffness = f.near_stiffness;
+    panel_.dt_max = float(scene.time_step.mode == TimeStepMode::Fixed ? scene.time_step.dt : scene.time_step.max);
+    panel_.scene = scene.name;
+    panel_.integrator = integrator_name(scene.integrator);
+    // A frame shows about 1/60 s of simulated time when the back end keeps up.
+    panel_.substeps = std::clamp(int(std::ceil((1.0 / 60.0) / std::max(1e-5, double(panel_.dt_max)))), 1, 16);
+    // Camera and floor: the grid's domain without its 2h band, or the container.
+    const GridGeometry& g = base_.grid;
+    const float band = 2.0f * float(sim_->setup().h);
+    lo_ = g.origin + Vec3{band, band, band};
+    hi_ = g.origin + g.cell_size * Vec3{float(g.nx), float(g.ny), float(g.nz)} - Vec3{band, band, band};
+    camera_.frame(lo_, hi_);
+    camera_.yaw = 0.0f;
+    camera_.pitch = 0.35f;
+    lines_.build(base_, lo_, hi_);
+    radius_ = 0.5f * float(sim_->setup().spacing);
+  }
+
+  // One frame: input, simulation substeps within the budget, upload, draw, panel.
+  void frame() {
+    const auto t0 = Clock::now();
+    process_held_input();
+    const double sim_t0 = sim_->time();
+    const auto s0 = Clock::now();
+    const PhaseTimes before = sim_->backend().phase_times();
+    if (!panel_.paused || single_step_) {
+      const int n = single_step_ ? 1 : panel_.substeps;
+      for (int i = 0; i < n; ++i) {
+        sim_->advance();
+        if (!single_step_ && ms_since(s0) > opt_.budget_ms) break;  // frame budget: stay interactive
+      }
+      single_step_ = false;
+    }
+    panel_.sim_ms = ms_since(s0);
+    const PhaseTimes& after = sim_->backend().phase_times();
+    const long steps = after.steps - before.steps;
+    if (steps > 0)
+      for (std::size_t p = 0; p < after.seconds.size(); ++p)
+        panel_.phase_per_step.seconds[p] = 1e3 * (after.seconds[p] - before.seconds[p]) / double(steps);
+
+    const auto d0 = Clock::now();
+    const ParticleState& ps = sim_->particles();
+    panel_.legend = particles_.upload(ps, sim_->setup().constants, ColourMode(panel_.colour_mode));
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    glViewport(0, 0, w, h);
+    glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const Mat4 view = camera_.view(), proj = camera_.projection(float(w) / float(std::max(h, 1)));
+    lines_.draw(view, proj);
+    particles_.draw(view, proj, radius_, h, panel_.flat_points);
+    draw_ui(ps);
+    panel_.draw_ms = ms_since(d0);
+
+    const double frame_ms = ms_since(t0);
+    fps_ = 0.9 * fps_ + 0.1 * (1e3 / std::max(frame_ms, 1e-3));
+    panel_.fps = fps_;
+    panel_.realtime_ratio = (sim_->time() - sim_t0) / (frame_ms * 1e-3);
+    ++frames_;
+  }
+
+  // Keys that act once per press.
+  void key(int k, int mods) {
+    switch (k) {
+      case GLFW_KEY_SPACE: panel_.paused = !panel_.paused; break;
+      case GLFW_KEY_N: single_step_ = true; break;
+      case GLFW_KEY_R: load_scene(scene_index_); break;
+      case GLFW_KEY_RIGHT_BRACKET: load_scene(scene_index_ + 1); break;
+      case GLFW_KEY_LEFT_BRACKET: load_scene(scene_index_ - 1); break;
+      case GLFW_KEY_B: next_backend(); break;
+      case GLFW_KEY_EQUAL:
+      case GLFW_KEY_KP_ADD: panel_.substeps = std::min(64, panel_.substeps * 2); break;
+      case GLFW_KEY_MINUS:
+      case GLFW_KEY_KP_SUBTRACT: panel_.substeps = std::max(1, panel_.substeps / 2); break;
+      case GLFW_KEY_C: panel_.colour_mode = (panel_.colour_mode + 1) % int(ColourMode::Count); break;
+      case GLFW_KEY_V: panel_.flat_points = !panel_.flat_points; break;
+      case GLFW_KEY_P: screenshot_requested_ = true; break;
+      case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, 1); break;
+      default: break;
+    }
+    (void)mods;
+  }
+
+  void scroll(double dy) { camera_.zoom(std::pow(0.9f, float(dy))); }
+
+  void write_screenshot_now(const std::string& path) {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    write_screenshot(path, w, h);
+    std::cout << "screenshot: " << path << "\n";
+  }
+  bool take_screenshot_request() {
+    const bool r = screenshot_requested_;
+    screenshot_requested_ = false;
+    return r;
+  }
+  long frames() const { return frames_; }
+  const PanelModel& panel() const { return panel_; }
+  Simulation& simulation() { return *sim_; }
+
+ private:
+  static Scene load_scene_file(const std::string& path, const std::vector<std::string>& sets) { return sph::load_scene(path, sets); }
+
+  void next_backend() {
+    for (std::size_t i = 1; i <= backends_.size(); ++i) {
+      const std::string& candidate = backends_[(index_of(backend_) + i) % backends_.size()];
+      try {
+        sim_->switch_backend(backend_factory(candidate));  // the state carries over
+        backend_ = candidate;
+        return;
+      } catch (const std::exception& e) {
+        std::cerr << "back end " << candidate << " skipped: " << e.what() << "\n";
+      }
+    }
+  }
+  std::size_t index_of(const std::string& b) const {
+    for (std::size_t i = 0; i < backends_.size(); ++i)
+      if (backends_[i] == b) return i;
+    return 0;
+  }
+
+  // Held keys and mouse: gravity tilt, sideways push, camera, mouse force.
+  void process_held_input() {
+    const bool ui_mouse = ImGui::GetIO().WantCaptureMouse;
+    const float step = 0.02f;
+    if (glfwGetKey(window_, GLFW_KEY_LEFT) == GLFW_PRESS) tilt_z_ = std::min(tilt_z_ + step, 0.8f);
+    if (glfwGetKey(window_, GLFW_KEY_RIGHT) == GLFW_PRESS) tilt_z_ = std::max(tilt_z_ - step, -0.8f);
+    if (glfwGetKey(window_, GLFW_KEY_UP) == GLFW_PRESS) tilt_x_ = std::min(tilt_x_ + step, 0.8f);
+    if (glfwGetKey(window_, GLFW_KEY_DOWN) == GLFW_PRESS) tilt_x_ = std::max(tilt_x_ - step, -0.8f);
+    float push = 0.0f;  // seed 000, section 5: push the water sideways
+    if (glfwGetKey(window_, GLFW_KEY_J) == GLFW_PRESS) push -= 1.0f;
+    if (glfwGetKey(window_, GLFW_KEY_L) == GLFW_PRESS) push += 1.0f;
+
+    double mx = 0.0, my = 0.0;
+    glfwGetCursorPos(window_, &mx, &my);
+    const float dx = float(mx - last_x_), dy = float(my - last_y_);
+    last_x_ = mx;
+    last_y_ = my;
+    const bool ctrl = glfwGetKey(window_, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                      glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+    const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && !ui_mouse;
+    const bool right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && !ui_mouse;
+    SimConstants c = base_;
+    apply_panel(c);
+    const float g = length(base_.gravity);
+    const Vec3 g0 = base_.gravity;
+    // Tilt: rotate gravity about z (left/right) and x (up/down).
+    const float cz = std::cos(tilt_z_), sz = std::sin(tilt_z_), cx = std::cos(tilt_x_), sx = std::sin(tilt_x_);
+    Vec3 gr{cz * g0.x - sz * g0.y, sz * g0.x + cz * g0.y, g0.z};
+    gr = Vec3{gr.x, cx * gr.y - sx * gr.z, sx * gr.y + cx * gr.z};
+    c.gravity = gr + Vec3{push * 0.5f * std::max(g, 9.81f), 0.0f, 0.0f};
+    c.user_force.strength = 0.0f;
+    if (ctrl && (left || right)) {
+      c.user_force.point = cursor_point(mx, my);
+      c.user_force.radius = 0.15f * length(hi_ - lo_);
+      c.user_force.strength = (left ? 3.0f : -3.0f) * std::max(g, 9.81f);
+    } else if (left) {
+      camera_.orbit(0.005f * dx, 0.005f * dy);
+    } else if (right) {
+      int w = 0, h = 0;
+      glfwGetWindowSize(window_, &w, &h);
+      camera_.pan(dx / float(std::max(h, 1)), dy / float(std::max(h, 1)));
+    }
+    sim_->set_constants(c);
+  }
+
+  // Panel values onto the constants of every fluid.
+  void apply_panel(SimConstants& c) const {
+    for (int32_t f = 0; f < c.num_fluids; ++f) {
+      FluidConstants& fc = c.fluids[f];
+      const float scale_mu = base_.fluids[0].viscosity > 0.0f ? panel_.viscosity / base_.fluids[0].viscosity : 1.0f;
+      fc.viscosity = base_.fluids[0].viscosity > 0.0f ? base_.fluids[f].viscosity * scale_mu : panel_.viscosity;
+      fc.speed_of_sound = panel_.speed_of_sound;
+      fc.tait_b = fc.rest_density * fc.speed_of_sound * fc.speed_of_sound / 7.0f;
+      fc.near_stiffness = panel_.near_stiffness;
+    }
+    c.near_enabled = panel_.near_stiffness > 0.0f;
+    TimeStepSpec& ts = sim_->time_step();
+    if (ts.mode == TimeStepMode::Fixed) ts.dt = panel_.dt_max; else ts.max = panel_.dt_max;
+  }
+
+  // The point under the cursor on the plane through the camera target, facing the camera.
+  Vec3 cursor_point(double mx, double my) const {
+    int w = 0, h = 0;
+    glfwGetWindowSize(window_, &w, &h);
+    const float ndc_x = float(2.0 * mx / std::max(w, 1) - 1.0), ndc_y = float(1.0 - 2.0 * my / std::max(h, 1));
+    const Mat4 v = camera_.view();
+    const Vec3 right{v[0], v[4], v[8]}, up{v[1], v[5], v[9]};
+    const float half = std::tan(0.5f * camera_.fovy) * camera_.distance;
+    const float aspect = float(w) / float(std::max(h, 1));
+    return camera_.target + (ndc_x * half * aspect) * right + (ndc_y * half) * up;
+  }
+
+  void draw_ui(const ParticleState& ps) {
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    panel_.backend = backend_;
+    panel_.backends = backends_;
+    panel_.particles = long(ps.size());
+    panel_.sim_time = sim_->time();
+    panel_.dt = sim_->last_dt();
+    panel_.density_error = measure(sim_->setup().constants, ps).density_error_mean;
+    draw_panel(panel_);
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  }
+
+  GLFWwindow* window_;
+  Options opt_;
+  std::vector<std::string> scenes_, backends_;
+  std::string backend_;
+  int scene_index_ = 0;
+  std::unique_ptr<Simulation> sim_;
+  SimConstants base_{};
+  ParticleRenderer particles_;
+  SceneLines lines_;
+  OrbitCamera camera_;
+  PanelModel panel_;
+  Vec3 lo_{}, hi_{};
+  float radius_ = 0.01f;
+  float tilt_x_ = 0.0f, tilt_z_ = 0.0f;
+  double last_x_ = 0.0, last_y_ = 0.0, fps_ = 0.0;
+  bool single_step_ = false, screenshot_requested_ = false;
+  long frames_ = 0;
+};
+
+void on_key(GLFWwindow* w, int key, int, int action, int mods) {
+  if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+  static_cast<Demo*>(glfwGetWindowUserPointer(w))->key(key, mods);
+}
+void on_scroll(GLFWwindow* w, double, double dy) {
+  if (ImGui::GetIO().WantCaptureMouse) return;
+  static_cast<Demo*>(glfwGetWindowUserPointer(w))->scroll(dy);
+}
+void on_glfw_error(int code, const char* text) { std::cerr << "GLFW error " << code << ": " << text << "\n"; }
+
+int run(const Options& o) {
+  glfwSetErrorCallback(on_glfw_error);
+  const char* display = std::getenv("DISPLAY");
+  if (!glfwInit() || !display || !*display) {
+    std::cerr << "error: no display: sph_demo opens a window and needs an X server (DISPLAY is "
+              << (display && *display ? display : "unset") << ").\n"
+              << "For a picture without a screen run it under Xvfb, for example\n"
+              << "  xvfb-run -a -s '-screen 0 1280x720x24' build/sph_demo --frames 120 --screenshot out/demo.png\n"
+              << "or simulate without drawing with build/sph_run.\n";
+    return 2;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GL_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, 4);
+  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "sph_demo", nullptr, nullptr);
+  if (!window) {
+    std::cerr << "error: cannot create an OpenGL 3.3 core window on this display\n";
+    glfwTerminate();
+    return 2;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(o.frames > 0 ? 0 : 1);
+  glewExperimental = GL_TRUE;
+  if (glewInit() != GLEW_OK) {
+    std::cerr << "error: GLEW could not load OpenGL functions\n";
+    return 2;
+  }
+  while (glGetError() != GL_NO_ERROR) {
+  }  // glewInit leaves a harmless GL_INVALID_ENUM on core profiles
+  std::cout << "OpenGL " << glGetString(GL_VERSION) << " on " << glGetString(GL_RENDERER) << "\n";
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+
+  int status = 0;
+  {
+    Demo demo(window, o);
+    glfwSetWindowUserPointer(window, &demo);
+    glfwSetKeyCallback(window, on_key);
+    glfwSetScrollCallback(window, on_scroll);
+    double report_at = 2.0;
+    const auto start = Clock::now();
+    try {
+      while (!glfwWindowShouldClose(window)) {
+        glfwPollEvents();
+        demo.frame();
+        if (o.frames > 0 && demo.frames() >= o.frames) {
+          if (!o.screenshot.empty()) demo.write_screenshot_now(o.screenshot);
+          const PanelModel& m = demo.panel();
+          std::cout << "frames: " << demo.frames() << "\nparticles: " << m.particles << "\nfps: " << m.fps
+                    << "\nsim_ms_per_frame: " << m.sim_ms << "\ndraw_ms_per_frame: " << m.draw_ms
+                    << "\nsimulated_time: " << demo.simulation().time() << "\n";
+          break;
+        }
+        if (demo.take_screenshot_request()) {
+          char name[64];
+          std::snprintf(name, sizeof name, "sph_screenshot_%05ld.png", demo.frames());
+          demo.write_screenshot_now(name);
+        }
+        glfwSwapBuffers(window);
+        if (o.frames == 0 && std::chrono::duration<double>(Clock::now() - start).count() > report_at) {
+          report_at += 2.0;
+          const PanelModel& m = demo.panel();
+          std::printf("\r  %.1f fps  sim %.1f ms  draw %.1f ms  t = %.3f s  ", m.fps, m.sim_ms, m.draw_ms, m.sim_time);
+          std::fflush(stdout);
+        }
+      }
+    } catch (const BlowUp& e) {
+      std::cerr << "\nerror: " << e.what() << "\n";
+      status = 3;
+    }
+  }
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"sph_demo: watch and play with an SPH fluid in real time (OpenGL window, Dear ImGui panel).\n"
+               "Controls: space pause, N step, R reset, [ ] scenes, B back end, arrows tilt gravity, J/L push,\n"
+               "ctrl+drag pull/push the water, mouse orbit/pan/zoom, +/- substeps, C colour, V points, P screenshot.\n"
+               "Exit status: 0 done, 1 bad input, 2 no display or OpenGL, 3 the simulation became unstable."};
+  app.add_option("--scene,scene", o.scene, "scene file (JSON)")->capture_default_str();
+  app.add_option("--backend,-b", o.backend, "back end: cpu, host or cuda")->capture_default_str();
+  app.add_option("--frames", o.frames, "render this many frames without input, then exit (headless runs)");
+  app.add_option("--screenshot", o.screenshot, "with --frames: write the last frame to this PNG");
+  app.add_option("--width", o.width, "window width")->capture_default_str()->check(CLI::Range(64, 8192));
+  app.add_option("--height", o.height, "window height")->capture_default_str()->check(CLI::Range(64, 8192));
+  app.add_option("--substeps", o.substeps, "simulation steps per frame (default: about 1/60 s per frame)");
+  app.add_option("--colour", o.colour, "fluid, speed, density_error, pressure or cell")
+      ->capture_default_str()->check(CLI::IsMember({"fluid", "speed", "density_error", "pressure", "cell"}));
+  app.add_option("--budget-ms", o.budget_ms, "simulation time budget per frame, milliseconds")->capture_default_str();
+  app.add_option("--set,-s", o.sets, "override a scene value, key=value (as sph_run)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (o.frames < 0 || (!o.screenshot.empty() && o.frames == 0)) {
+    std::cerr << "error: --screenshot needs --frames N with N > 0\n";
+    return 1;
+  }
+  try {
+    (void)load_scene(o.scene, o.sets);  // bad scene: a clear message before any window opens
+    (void)backend_factory(o.backend);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  try {
+    return run(o);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,52 @@
+// What the particles are coloured by, and the colour maps. SPH_HD so a CUDA kernel writing interop
+// buffers can use the same mapping as the host path.
+#pragma once
+
+#include <cstdint>
+
+#include "../common/sph_hd.h"
+#include "../common/vec3.h"
+
+namespace sph::render {
+
+enum class ColourMode : int { Fluid, Speed, DensityError, Pressure, Cell, Count };
+
+inline const char* colour_mode_name(ColourMode m) {
+  switch (m) {
+    case ColourMode::Fluid: return "fluid";
+    case ColourMode::Speed: return "speed";
+    case ColourMode::DensityError: return "density error";
+    case ColourMode::Pressure: return "pressure";
+    case ColourMode::Cell: return "grid cell";
+    case ColourMode::Count: break;
+  }
+  return "?";
+}
+
+// A perceptually ordered dark-blue -> teal -> yellow ramp (after viridis), t in [0, 1].
+SPH_HD inline Vec3 ramp(float t) {
+  t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+  const Vec3 stops[5] = {{0.27f, 0.00f, 0.33f}, {0.23f, 0.32f, 0.55f}, {0.13f, 0.57f, 0.55f},
+                         {0.37f, 0.79f, 0.38f}, {0.99f, 0.91f, 0.14f}};
+  const float x = t * 4.0f;
+  int i = int(x);
+  if (i > 3) i = 3;
+  const float f = x - float(i);
+  return (1.0f - f) * stops[i] + f * stops[i + 1];
+}
+
+// Distinct colours for fluids (water blue first).
+SPH_HD inline Vec3 fluid_colour(int fluid) {
+  const Vec3 palette[8] = {{0.16f, 0.45f, 0.85f}, {0.90f, 0.45f, 0.15f}, {0.30f, 0.75f, 0.35f}, {0.80f, 0.25f, 0.55f},
+                           {0.95f, 0.80f, 0.20f}, {0.45f, 0.35f, 0.85f}, {0.20f, 0.75f, 0.80f}, {0.60f, 0.60f, 0.60f}};
+  return palette[fluid & 7];
+}
+
+// A hash colour per grid cell, to see the binning.
+SPH_HD inline Vec3 cell_colour(int32_t cell) {
+  uint32_t h = uint32_t(cell) * 2654435761u;
+  return {0.3f + 0.7f * float((h >> 8) & 255u) / 255.0f, 0.3f + 0.7f * float((h >> 16) & 255u) / 255.0f,
+          0.3f + 0.7f * float((h >> 24) & 255u) / 255.0f};
+}
+
+}  // namespace sph::render

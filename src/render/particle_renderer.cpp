@@ -1,0 +1,91 @@
+#include "particle_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "../common/grid.h"
+
+namespace sph::render {
+
+ParticleRenderer::ParticleRenderer() : program_("particles.vert", "particles.frag") {
+  glGenVertexArrays(1, &vao_);
+  glGenBuffers(2, vbo_);
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  glEnableVertexAttribArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_[1]);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+  glEnableVertexAttribArray(1);
+  glBindVertexArray(0);
+}
+
+ParticleRenderer::~ParticleRenderer() {
+  glDeleteBuffers(2, vbo_);
+  glDeleteVertexArrays(1, &vao_);
+}
+
+ColourRange ParticleRenderer::upload(const ParticleState& ps, const SimConstants& c, ColourMode mode) {
+  const std::size_t n = ps.size();
+  colours_.resize(n);
+  ColourRange range;
+  switch (mode) {
+    case ColourMode::Fluid:
+      for (std::size_t i = 0; i < n; ++i) colours_[i] = fluid_colour(ps.fluid[i]);
+      range = {0.0f, float(c.num_fluids), ""};
+      break;
+    case ColourMode::Speed: {
+      float vmax = 1e-6f;
+      for (std::size_t i = 0; i < n; ++i) vmax = std::max(vmax, length(ps.vel[i]));
+      for (std::size_t i = 0; i < n; ++i) colours_[i] = ramp(length(ps.vel[i]) / vmax);
+      range = {0.0f, vmax, "m/s"};
+      break;
+    }
+    case ColourMode::DensityError:  // fixed scale: -5% .. +5% of rest density
+      for (std::size_t i = 0; i < n; ++i) {
+        const float rho0 = c.fluids[ps.fluid[i]].rest_density;
+        colours_[i] = ramp(0.5f + 10.0f * (ps.density[i] - rho0) / rho0);
+      }
+      range = {-5.0f, 5.0f, "% of rho0"};
+      break;
+    case ColourMode::Pressure: {
+      float lo = 0.0f, hi = 1e-6f;
+      for (std::size_t i = 0; i < n; ++i) {
+        lo = std::min(lo, ps.pressure[i]);
+        hi = std::max(hi, ps.pressure[i]);
+      }
+      for (std::size_t i = 0; i < n; ++i) colours_[i] = ramp((ps.pressure[i] - lo) / (hi - lo));
+      range = {lo, hi, "Pa"};
+      break;
+    }
+    case ColourMode::Cell:
+    case ColourMode::Count:
+      for (std::size_t i = 0; i < n; ++i) colours_[i] = cell_colour(cell_index(c.grid, ps.pos[i]));
+      range = {0.0f, float(cell_count(c.grid)), "cells"};
+      break;
+  }
+  count_ = GLsizei(n);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(Vec3)), ps.pos.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_[1]);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(Vec3)), colours_.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  return range;
+}
+
+void ParticleRenderer::draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat) const {
+  if (count_ == 0) return;
+  program_.use();
+  glUniformMatrix4fv(program_.uniform("u_view"), 1, GL_FALSE, view.data());
+  glUniformMatrix4fv(program_.uniform("u_projection"), 1, GL_FALSE, projection.data());
+  glUniform1f(program_.uniform("u_radius"), radius);
+  glUniform1f(program_.uniform("u_viewport_height"), float(viewport_height));
+  const Vec3 light = normalise(transform_direction(view, Vec3{0.4f, 1.0f, 0.6f}));
+  glUniform3f(program_.uniform("u_light"), light.x, light.y, light.z);
+  glUniform1i(program_.uniform("u_flat"), flat ? 1 : 0);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_POINTS, 0, count_);
+  glBindVertexArray(0);
+}
+
+}  // namespace sph::render

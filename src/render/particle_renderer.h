@@ -1,0 +1,45 @@
+// Particles drawn from two VBOs (positions, colours) with the sphere-impostor shader. The cpu and host
+// back ends upload into the VBOs; a CUDA back end can register the same VBOs for interop (vbo ids below).
+#pragma once
+
+#include <GL/glew.h>
+
+#include <vector>
+
+#include "../common/particle_state.h"
+#include "../common/params.h"
+#include "colour_map.h"
+#include "gl_program.h"
+#include "math3d.h"
+
+namespace sph::render {
+
+struct ColourRange {
+  float lo = 0.0f, hi = 1.0f;
+  const char* unit = "";
+};
+
+class ParticleRenderer {
+ public:
+  ParticleRenderer();
+  ~ParticleRenderer();
+  ParticleRenderer(const ParticleRenderer&) = delete;
+  ParticleRenderer& operator=(const ParticleRenderer&) = delete;
+
+  // Colours the particles on the host and uploads positions and colours. Returns the colour range used
+  // (for the legend).
+  ColourRange upload(const ParticleState& ps, const SimConstants& c, ColourMode mode);
+  void draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat) const;
+
+  GLuint position_vbo() const { return vbo_[0]; }
+  GLuint colour_vbo() const { return vbo_[1]; }
+
+ private:
+  GlProgram program_;
+  GLuint vao_ = 0;
+  GLuint vbo_[2] = {0, 0};
+  GLsizei count_ = 0;
+  std::vector<Vec3> colours_;
+};
+
+}  // namespace sph::render

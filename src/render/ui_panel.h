@@ -1,0 +1,37 @@
+// The Dear ImGui panel: live parameters, live statistics, the colour legend and the controls' help.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "../common/backend.h"
+#include "colour_map.h"
+#include "particle_renderer.h"
+
+namespace sph::render {
+
+// Values the panel shows and edits; the demo applies the edits to the simulation after the frame.
+struct PanelModel {
+  // live parameters (first fluid's values; applied to every fluid)
+  float viscosity = 0.0f;
+  float speed_of_sound = 0.0f;
+  float near_stiffness = 0.0f;
+  float dt_max = 0.0f;
+  int substeps = 1;
+  int colour_mode = 0;
+  bool paused = false;
+  bool flat_points = false;
+  // statistics
+  std::string scene, backend, integrator;
+  long particles = 0;
+  double fps = 0.0, sim_ms = 0.0, draw_ms = 0.0, sim_time = 0.0, realtime_ratio = 0.0, dt = 0.0;
+  double density_error = 0.0;
+  PhaseTimes phase_per_step;  // ms per step by phase, averaged over the last frames
+  ColourRange legend;
+  std::vector<std::string> backends;
+};
+
+// Draws the panel; returns true when a parameter was edited.
+bool draw_panel(PanelModel& m);
+
+}  // namespace sph::render
