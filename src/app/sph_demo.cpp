@@ -117,8 +117,10 @@ class Demo {
         panel_.phase_per_step.seconds[p] = 1e3 * (after.seconds[p] - before.seconds[p]) / double(steps);
 
     const auto d0 = Clock::now();
-    const ParticleState& ps = sim_->particles();
-    panel_.legend = particles_.upload(ps, sim_->setup().constants, ColourMode(panel_.colour_mode));
+    const bool interop = write_by_interop();
+    if (!interop || frames_ % 30 == 0) stats_ = sim_->particles();  // with interop: statistics now and then
+    if (!interop) panel_.legend = particles_.upload(stats_, sim_->setup().constants, ColourMode(panel_.colour_mode));
+    const ParticleState& ps = stats_;
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     glViewport(0, 0, w, h);
@@ -269,6 +271,30 @@ class Demo {
     return camera_.target + (ndc_x * half * aspect) * right + (ndc_y * half) * up;
   }
 
+  // CUDA back end: the kernels write the VBOs through CUDA-OpenGL interop, no copy through the host.
+  bool write_by_interop() {
+    Backend& b = sim_->backend();
+    if (b.name() != "cuda") return false;
+    const ColourMode mode = ColourMode(panel_.colour_mode);
+    GlBuffers req;
+    particles_.reserve(b.size());
+    req.position_vbo = particles_.position_vbo();
+    req.colour_vbo = particles_.colour_vbo();
+    req.capacity = particles_.capacity();
+    req.generation = particles_.generation();
+    req.colour_mode = int(mode);
+    ColourRange range{0.0f, 1.0f, ""};
+    if (mode == ColourMode::Speed) range = {0.0f, std::max(b.diagnose().max_speed, 1e-6f), "m/s"};
+    if (mode == ColourMode::DensityError) range = {-5.0f, 5.0f, "% of rho0"};
+    if (mode == ColourMode::Pressure) range = {0.0f, 0.05f * sim_->setup().constants.fluids[0].tait_b, "Pa"};
+    req.lo = range.lo;
+    req.hi = range.hi;
+    if (!b.write_gl_buffers(req)) return false;
+    particles_.set_count(b.size());
+    panel_.legend = range;
+    return true;
+  }
+
   void draw_ui(const ParticleState& ps) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -290,6 +316,7 @@ class Demo {
   std::string backend_;
   int scene_index_ = 0;
   std::unique_ptr<Simulation> sim_;
+  ParticleState stats_;  // last downloaded state (every frame, or every 30th with interop)
   SimConstants base_{};
   ParticleRenderer particles_;
   SceneLines lines_;

@@ -33,6 +33,16 @@ struct Diagnostics {
   int32_t non_finite = -1;   // index of a particle with a NaN or infinite position or velocity, or -1
 };
 
+// OpenGL buffers a back end may write straight into (CUDA-OpenGL interop): positions and colours as
+// 3 floats per particle. Plain integers, so this header needs no GL or CUDA header.
+struct GlBuffers {
+  uint32_t position_vbo = 0, colour_vbo = 0;
+  std::size_t capacity = 0;   // particles the buffers hold
+  uint32_t generation = 0;    // changes whenever the buffers are reallocated (register them again)
+  int colour_mode = 0;        // render::ColourMode
+  float lo = 0.0f, hi = 1.0f; // colour range
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -48,6 +58,9 @@ class Backend {
   // Replaces the constants between steps (live parameters: viscosity, stiffness, gravity, user force).
   // The grid geometry must stay the same.
   virtual void set_constants(const SimConstants& constants) = 0;
+  // Writes positions and colours into the OpenGL buffers without a copy through the host; returns false
+  // when the back end cannot (then the caller downloads and uploads).
+  virtual bool write_gl_buffers(const GlBuffers&) { return false; }
 };
 
 using BackendFactory = std::function<std::unique_ptr<Backend>(const SimConstants&)>;

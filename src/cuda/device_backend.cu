@@ -26,6 +26,7 @@
 #include "../common/grid.h"
 #include "../common/integrate.h"
 #include "../common/pressure.h"
+#include "../render/colour_map.h"
 #include "device_arrays.h"
 #include "device_backend.h"
 
@@ -159,6 +160,34 @@ struct DiagCombineFn {
   }
 };
 
+// Interop: positions and colours written by a kernel into mapped OpenGL buffers (the same colour maps as
+// the host path, src/render/colour_map.h).
+struct WriteRenderFn {
+  SimConstants c;
+  ParticleView p;
+  Vec3* positions;
+  Vec3* colours;
+  int mode;
+  float lo, hi;
+  SPH_HD void operator()(int32_t i) const {
+    positions[i] = p.pos[i];
+    const float span = hi > lo ? hi - lo : 1.0f;
+    Vec3 col;
+    switch (render::ColourMode(mode)) {
+      case render::ColourMode::Speed: col = render::ramp((length(p.vel[i]) - lo) / span); break;
+      case render::ColourMode::DensityError: {
+        const float rho0 = c.fluids[p.fluid[i]].rest_density;
+        col = render::ramp(0.5f + 10.0f * (p.density[i] - rho0) / rho0);
+        break;
+      }
+      case render::ColourMode::Pressure: col = render::ramp((p.pressure[i] - lo) / span); break;
+      case render::ColourMode::Cell: col = render::cell_colour(cell_index(c.grid, p.pos[i])); break;
+      default: col = render::fluid_colour(p.fluid[i]); break;
+    }
+    colours[i] = col;
+  }
+};
+
 // ---- the back end -----------------------------------------------------------------------------------------
 
 class DeviceBackend final : public Backend {
@@ -170,6 +199,43 @@ class DeviceBackend final : public Backend {
   std::size_t size() const override { return d_.size(); }
   const PhaseTimes& phase_times() const override { return times_; }
   void set_constants(const SimConstants& constants) override { c_ = constants; }
+
+#if defined(SPH_DEVICE_GL_INTEROP)
+  ~DeviceBackend() override { unregister_gl(); }
+
+  bool write_gl_buffers(const GlBuffers& b) override {
+    if (std::size_t(n()) > b.capacity) throw std::runtime_error("interop buffers hold fewer particles than the simulation");
+    if (b.generation != gl_generation_ || !gl_registered_) {
+      unregister_gl();
+      CUDA_CHECK(cudaGraphicsGLRegisterBuffer(&gl_[0], b.position_vbo, cudaGraphicsRegisterFlagsWriteDiscard));
+      CUDA_CHECK(cudaGraphicsGLRegisterBuffer(&gl_[1], b.colour_vbo, cudaGraphicsRegisterFlagsWriteDiscard));
+      gl_registered_ = true;
+      gl_generation_ = b.generation;
+    }
+    CUDA_CHECK(cudaGraphicsMapResources(2, gl_, 0));
+    void* pos = nullptr;
+    void* col = nullptr;
+    std::size_t bytes_pos = 0, bytes_col = 0;
+    CUDA_CHECK(cudaGraphicsResourceGetMappedPointer(&pos, &bytes_pos, gl_[0]));
+    CUDA_CHECK(cudaGraphicsResourceGetMappedPointer(&col, &bytes_col, gl_[1]));
+    launch(n(), WriteRenderFn{c_, d_.view(), static_cast<Vec3*>(pos), static_cast<Vec3*>(col), b.colour_mode, b.lo, b.hi});
+    CUDA_CHECK(cudaGraphicsUnmapResources(2, gl_, 0));  // before OpenGL draws from them
+    return true;
+  }
+
+ private:
+  void unregister_gl() {
+    if (!gl_registered_) return;
+    cudaGraphicsUnregisterResource(gl_[0]);  // no throw from a destructor path
+    cudaGraphicsUnregisterResource(gl_[1]);
+    gl_registered_ = false;
+  }
+  cudaGraphicsResource_t gl_[2] = {nullptr, nullptr};
+  bool gl_registered_ = false;
+  uint32_t gl_generation_ = 0;
+
+ public:
+#endif
 
   void initialise_forces() override {
     launch(n(), CopyVelocityFn{d_.view()});

@@ -1,5 +1,12 @@
-// The "cuda" build of the device back end: device_backend.cu compiled by nvcc for NVIDIA GPUs.
+// The "cuda" build of the device back end: device_backend.cu compiled by nvcc for NVIDIA GPUs, with
+// CUDA-OpenGL interop where OpenGL headers exist (GL/glew.h must come before cuda_gl_interop.h).
 #include <string>
+
+#if defined(SPH_WITH_GL_HEADERS)
+#include <GL/glew.h>
+#include <cuda_gl_interop.h>
+#define SPH_DEVICE_GL_INTEROP 1
+#endif
 
 #include "cuda_check.h"
 #include "device_backend.h"

@@ -65,12 +65,24 @@ ColourRange ParticleRenderer::upload(const ParticleState& ps, const SimConstants
       break;
   }
   count_ = GLsizei(n);
+  reserve(n);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(Vec3)), ps.pos.data(), GL_STREAM_DRAW);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(n * sizeof(Vec3)), ps.pos.data());
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[1]);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(Vec3)), colours_.data(), GL_STREAM_DRAW);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(n * sizeof(Vec3)), colours_.data());
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   return range;
+}
+
+void ParticleRenderer::reserve(std::size_t n) {
+  if (n <= capacity_ && capacity_ > 0) return;
+  capacity_ = std::max<std::size_t>(std::max<std::size_t>(n, 1024), 2 * capacity_);
+  for (GLuint vbo : vbo_) {
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(capacity_ * sizeof(Vec3)), nullptr, GL_DYNAMIC_DRAW);
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  ++generation_;
 }
 
 void ParticleRenderer::draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat) const {

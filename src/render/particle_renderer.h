@@ -31,14 +31,22 @@ class ParticleRenderer {
   ColourRange upload(const ParticleState& ps, const SimConstants& c, ColourMode mode);
   void draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat) const;
 
+  // For interop: make both VBOs hold at least n particles (growing by doubling; every reallocation
+  // changes generation()), then let the back end write them and set the count to draw.
+  void reserve(std::size_t n);
+  void set_count(std::size_t n) { count_ = GLsizei(n); }
   GLuint position_vbo() const { return vbo_[0]; }
   GLuint colour_vbo() const { return vbo_[1]; }
+  std::size_t capacity() const { return capacity_; }
+  uint32_t generation() const { return generation_; }
 
  private:
   GlProgram program_;
   GLuint vao_ = 0;
   GLuint vbo_[2] = {0, 0};
   GLsizei count_ = 0;
+  std::size_t capacity_ = 0;  // particles the VBOs hold
+  uint32_t generation_ = 0;
   std::vector<Vec3> colours_;
 };
 
