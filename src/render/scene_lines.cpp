@@ -4,6 +4,52 @@
 
 namespace sph::render {
 
+namespace {
+
+// Centre of a quadric (where grad f = 0: Q_sub [x; 1] = 0), by Cramer's rule; false when singular.
+bool quadric_centre(const float* q, Vec3& centre) {
+  const double a[3][3] = {{q[0], q[1], q[2]}, {q[4], q[5], q[6]}, {q[8], q[9], q[10]}};
+  const double b[3] = {-q[3], -q[7], -q[11]};
+  auto det3 = [](const double m[3][3]) {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  const double d = det3(a);
+  if (std::fabs(d) < 1e-12) return false;
+  double x[3];
+  for (int k = 0; k < 3; ++k) {
+    double m[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[i][j] = j == k ? b[i] : a[i][j];
+    x[k] = det3(m) / d;
+  }
+  centre = Vec3{float(x[0]), float(x[1]), float(x[2])};
+  return true;
+}
+
+// Smallest t > 0 with f(c + t d) = 0, f being the quadric p^T Q p.
+bool quadric_hit(const float* q, Vec3 c, Vec3 d, float& t) {
+  auto f = [&](Vec3 p) {
+    const float h[4] = {p.x, p.y, p.z, 1.0f};
+    float s = 0.0f;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) s += h[i] * q[4 * i + j] * h[j];
+    return s;
+  };
+  // f(c + t d) = A t^2 + B t + C, from three samples.
+  const float f0 = f(c), f1 = f(c + d), fm = f(c - d);
+  const float A = 0.5f * (f1 + fm) - f0, B = 0.5f * (f1 - fm), C = f0;
+  if (std::fabs(A) < 1e-12f) return false;
+  const float disc = B * B - 4.0f * A * C;
+  if (disc < 0.0f) return false;
+  const float s = std::sqrt(disc);
+  const float t1 = (-B - s) / (2.0f * A), t2 = (-B + s) / (2.0f * A);
+  t = t1 > 0.0f ? t1 : t2;
+  return t > 0.0f;
+}
+
+}  // namespace
+
 SceneLines::SceneLines() : program_("lines.vert", "lines.frag") {
   glGenVertexArrays(1, &vao_);
   glGenBuffers(1, &vbo_);
@@ -53,6 +99,26 @@ void SceneLines::build(const SimConstants& c, Vec3 lo, Vec3 hi) {
             return sh.a + (axis == 0 ? Vec3{0, u, w} : axis == 1 ? Vec3{u, 0, w} : Vec3{u, w, 0});
           };
           line(pt(t0), pt(t1), col);
+        }
+    } else if (sh.type == ShapeType::Quadric) {
+      // Closed quadrics (ellipsoids): latitude and longitude lines found along rays from the centre.
+      Vec3 centre;
+      if (!quadric_centre(sh.q, centre)) continue;
+      const int nu = 12, nv = 24;
+      auto surface = [&](int i, int j, Vec3& out) {
+        const float th = kPi * float(i) / nu, ph = 2.0f * kPi * float(j) / nv;
+        const Vec3 d{std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)};
+        float t = 0.0f;
+        if (!quadric_hit(sh.q, centre, d, t)) return false;
+        out = centre + t * d;
+        return true;
+      };
+      for (int i = 0; i <= nu; ++i)
+        for (int j = 0; j < nv; ++j) {
+          Vec3 a, b, c2;
+          if (!surface(i, j, a)) continue;
+          if (i > 0 && i < nu && surface(i, j + 1, b)) line(a, b, obstacle);
+          if (i < nu && surface(i + 1, j, c2)) line(a, c2, obstacle);
         }
     } else if (sh.type == ShapeType::Plane && std::fabs(sh.b.y) > 0.9f) {
       floor_y = sh.a.y;
