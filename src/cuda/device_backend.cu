@@ -171,19 +171,9 @@ struct WriteRenderFn {
   float lo, hi;
   SPH_HD void operator()(int32_t i) const {
     positions[i] = p.pos[i];
-    const float span = hi > lo ? hi - lo : 1.0f;
-    Vec3 col;
-    switch (render::ColourMode(mode)) {
-      case render::ColourMode::Speed: col = render::ramp((length(p.vel[i]) - lo) / span); break;
-      case render::ColourMode::DensityError: {
-        const float rho0 = c.fluids[p.fluid[i]].rest_density;
-        col = render::ramp(0.5f + 10.0f * (p.density[i] - rho0) / rho0);
-        break;
-      }
-      case render::ColourMode::Pressure: col = render::ramp((p.pressure[i] - lo) / span); break;
-      case render::ColourMode::Cell: col = render::cell_colour(cell_index(c.grid, p.pos[i])); break;
-      default: col = render::fluid_colour(p.fluid[i]); break;
-    }
+    const Vec3 col = render::particle_colour(render::ColourMode(mode), lo, hi, length(p.vel[i]), p.density[i],
+                                             c.fluids[p.fluid[i]].rest_density, p.pressure[i], p.fluid[i],
+                                             cell_index(c.grid, p.pos[i]));
     colours[i] = col;
   }
 };

@@ -49,4 +49,21 @@ SPH_HD inline Vec3 cell_colour(int32_t cell) {
           0.3f + 0.7f * float((h >> 24) & 255u) / 255.0f};
 }
 
+// The colour of one particle: one definition for the host upload path and the CUDA interop kernel.
+// [lo, hi] is the range of the mapped quantity (speed in m/s, pressure in Pa); the density error uses a
+// fixed -5% .. +5% of rest density.
+SPH_HD inline Vec3 particle_colour(ColourMode mode, float lo, float hi, float speed, float density,
+                                   float rest_density, float pressure, int fluid, int32_t cell) {
+  const float span = hi > lo ? hi - lo : 1.0f;
+  switch (mode) {
+    case ColourMode::Speed: return ramp((speed - lo) / span);
+    case ColourMode::DensityError: return ramp(0.5f + 10.0f * (density - rest_density) / rest_density);
+    case ColourMode::Pressure: return ramp((pressure - lo) / span);
+    case ColourMode::Cell: return cell_colour(cell);
+    case ColourMode::Fluid:
+    case ColourMode::Count: break;
+  }
+  return fluid_colour(fluid);
+}
+
 }  // namespace sph::render

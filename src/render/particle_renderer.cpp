@@ -28,42 +28,26 @@ ParticleRenderer::~ParticleRenderer() {
 ColourRange ParticleRenderer::upload(const ParticleState& ps, const SimConstants& c, ColourMode mode) {
   const std::size_t n = ps.size();
   colours_.resize(n);
-  ColourRange range;
-  switch (mode) {
-    case ColourMode::Fluid:
-      for (std::size_t i = 0; i < n; ++i) colours_[i] = fluid_colour(ps.fluid[i]);
-      range = {0.0f, float(c.num_fluids), ""};
-      break;
-    case ColourMode::Speed: {
-      float vmax = 1e-6f;
-      for (std::size_t i = 0; i < n; ++i) vmax = std::max(vmax, length(ps.vel[i]));
-      for (std::size_t i = 0; i < n; ++i) colours_[i] = ramp(length(ps.vel[i]) / vmax);
-      range = {0.0f, vmax, "m/s"};
-      break;
+  // The range of the mapped quantity, for the colour map and the legend.
+  ColourRange range{0.0f, 1.0f, ""};
+  if (mode == ColourMode::Speed) {
+    float vmax = 1e-6f;
+    for (std::size_t i = 0; i < n; ++i) vmax = std::max(vmax, length(ps.vel[i]));
+    range = {0.0f, vmax, "m/s"};
+  } else if (mode == ColourMode::Pressure) {
+    float lo = 0.0f, hi = 1e-6f;
+    for (std::size_t i = 0; i < n; ++i) {
+      lo = std::min(lo, ps.pressure[i]);
+      hi = std::max(hi, ps.pressure[i]);
     }
-    case ColourMode::DensityError:  // fixed scale: -5% .. +5% of rest density
-      for (std::size_t i = 0; i < n; ++i) {
-        const float rho0 = c.fluids[ps.fluid[i]].rest_density;
-        colours_[i] = ramp(0.5f + 10.0f * (ps.density[i] - rho0) / rho0);
-      }
-      range = {-5.0f, 5.0f, "% of rho0"};
-      break;
-    case ColourMode::Pressure: {
-      float lo = 0.0f, hi = 1e-6f;
-      for (std::size_t i = 0; i < n; ++i) {
-        lo = std::min(lo, ps.pressure[i]);
-        hi = std::max(hi, ps.pressure[i]);
-      }
-      for (std::size_t i = 0; i < n; ++i) colours_[i] = ramp((ps.pressure[i] - lo) / (hi - lo));
-      range = {lo, hi, "Pa"};
-      break;
-    }
-    case ColourMode::Cell:
-    case ColourMode::Count:
-      for (std::size_t i = 0; i < n; ++i) colours_[i] = cell_colour(cell_index(c.grid, ps.pos[i]));
-      range = {0.0f, float(cell_count(c.grid)), "cells"};
-      break;
+    range = {lo, hi, "Pa"};
+  } else if (mode == ColourMode::DensityError) {
+    range = {-5.0f, 5.0f, "% of rho0"};
   }
+  for (std::size_t i = 0; i < n; ++i)
+    colours_[i] = particle_colour(mode, range.lo, range.hi, length(ps.vel[i]), ps.density[i],
+                                  c.fluids[ps.fluid[i]].rest_density, ps.pressure[i], ps.fluid[i],
+                                  cell_index(c.grid, ps.pos[i]));
   count_ = GLsizei(n);
   reserve(n);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
