@@ -457,13 +457,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    (void)load_scene(o.scene, o.sets);  // bad scene: a clear message before any window opens
+    (void)load_scene(o.scene, o.sets);  // bad scene or back end: a clear message before any window opens
     (void)backend_factory(o.backend);
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  }
-  try {
     return run(o);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
