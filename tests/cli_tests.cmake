@@ -91,3 +91,20 @@ sph_cli_test(perf_cube_3_steps
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 3 --quiet --out ${SPH_CLI_OUT}/perf_cube)
 unset(_csv)
 unset(_columns)
+
+# --- sph_demo ------------------------------------------------------------------------------------------
+if(SPH_HAVE_DEMO)
+  set(SPH_DEMO $<TARGET_FILE:sph_demo>)
+  sph_cli_test(demo_bad_scene
+    --exit 1 --stderr "error:" --stderr "no_such_scene.json"
+    -- ${SPH_DEMO} --scene ${SPH_CLI_DATA}/no_such_scene.json)
+  sph_cli_test(demo_screenshot_without_frames
+    --exit 1 --stderr "--screenshot needs --frames"
+    -- ${SPH_DEMO} --scene ${SPH_CLI_SCENES}/dam_break.json --screenshot x.png)
+  # Without a display the demo says so and how to get a picture anyway (exit 2).
+  add_test(NAME cli_demo_no_display
+           COMMAND env -u DISPLAY bash ${SPH_CLI_CHECK} --exit 2 --stderr "no display" --stderr "xvfb-run"
+                   -- ${SPH_DEMO} --scene ${SPH_CLI_SCENES}/dam_break.json --backend cpu
+           WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  set_tests_properties(cli_demo_no_display PROPERTIES TIMEOUT 120 LABELS cli)
+endif()
