@@ -10,6 +10,8 @@ bool cuda_device_available(std::string* why) {
   return false;
 }
 
+std::string cuda_device_name() { return ""; }
+
 std::unique_ptr<Backend> make_cuda_backend(const SimConstants&) {
   std::string why;
   cuda_device_available(&why);

@@ -19,4 +19,7 @@ std::unique_ptr<Backend> make_cuda_backend(const SimConstants& constants);
 // Whether a CUDA device can be used; otherwise *why says what is missing.
 bool cuda_device_available(std::string* why);
 
+// The name of CUDA device 0, or "" when there is none.
+std::string cuda_device_name();
+
 }  // namespace sph

@@ -27,6 +27,13 @@ bool cuda_device_available(std::string* why) {
   return true;
 }
 
+std::string cuda_device_name() {
+  if (!cuda_device_available(nullptr)) return "";
+  cudaDeviceProp prop{};
+  CUDA_CHECK(cudaGetDeviceProperties(&prop, 0));
+  return prop.name;
+}
+
 namespace {
 void require_cuda_device() {
   std::string why;

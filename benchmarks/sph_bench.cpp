@@ -1,0 +1,240 @@
+// sph_bench: the CPU-vs-GPU benchmark. Fixed workloads on every usable back end: the thesis's performance
+// cube (16^3 and 32^3, thesis 5.2 parameters) and the dam break at several sizes. Warm-up steps, repeated
+// runs, medians. Prints a table and writes CSV and JSON that name the hardware.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+#include "app/backends.h"
+#include "common/simulation.h"
+#include "cuda/device_backend.h"
+
+namespace fs = std::filesystem;
+using namespace sph;
+
+namespace {
+
+struct Workload {
+  std::string name;
+  std::string scene;
+  std::vector<std::string> sets;
+  // The thesis's published ms/step for this workload (thesis 5.2), 0 when it has none.
+  double thesis_cpu_ms = 0.0, thesis_gpu_ms = 0.0;
+  bool cuda_only = false;
+};
+
+struct Result {
+  std::string backend, workload;
+  long particles = 0;
+  double ms_per_step = 0.0;  // median over the measured steps of all repeats
+  double ms_min = 0.0, ms_max = 0.0;
+  PhaseTimes phases;         // ms per step by phase
+  double speedup_vs_cpu = 0.0;
+  double thesis_cpu_ms = 0.0, thesis_gpu_ms = 0.0;
+};
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+int host_threads() {
+#if defined(_OPENMP)
+  return omp_get_max_threads();
+#else
+  return int(std::thread::hardware_concurrency());
+#endif
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
+}
+
+Result run_one(const std::string& scene_dir, const Workload& w, const std::string& backend, int warmup, int steps,
+               int repeats) {
+  Result r;
+  r.backend = backend;
+  r.workload = w.name;
+  r.thesis_cpu_ms = w.thesis_cpu_ms;
+  r.thesis_gpu_ms = w.thesis_gpu_ms;
+  std::vector<double> samples;
+  for (int rep = 0; rep < repeats; ++rep) {
+    // A fresh simulation each repeat: every repeat measures the same steps of the same workload.
+    Scene scene = load_scene(scene_dir + "/" + w.scene, w.sets);
+    Simulation sim(scene, backend_factory(backend), 1e9);
+    for (int i = 0; i < warmup; ++i) sim.advance();
+    const PhaseTimes before = sim.backend().phase_times();
+    for (int i = 0; i < steps; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      sim.advance();
+      samples.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    const PhaseTimes& after = sim.backend().phase_times();
+    for (std::size_t p = 0; p < after.seconds.size(); ++p)
+      r.phases.seconds[p] += 1e3 * (after.seconds[p] - before.seconds[p]) / double(steps * repeats);
+    r.particles = long(sim.backend().size());
+  }
+  r.ms_per_step = median(samples);
+  r.ms_min = *std::min_element(samples.begin(), samples.end());
+  r.ms_max = *std::max_element(samples.begin(), samples.end());
+  return r;
+}
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char ch : s) out += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> backends;
+  std::string out = "out/bench", scene_dir = SPH_SOURCE_DIR "/scenes";
+  int warmup = 3, steps = 10, repeats = 3;
+  std::vector<int> dam_sizes{20, 37, 80};  // particles across a: about 16k, 100k and 1M particles
+  int dam_cuda_only = 127;                 // about 4M particles, on cuda only
+  bool quick = false;
+  CLI::App app{"sph_bench: ms per step and particle-steps per second of fixed workloads on every back end.\n"
+               "Workloads: the thesis's performance cube (16^3 and 32^3 particles, thesis 5.2 parameters) and the\n"
+               "dam break at several resolutions. Writes OUT/bench.csv and OUT/bench.json naming the hardware."};
+  app.add_option("--backends", backends, "back ends to measure (default: every usable one)");
+  app.add_option("--out,-o", out, "output directory")->capture_default_str();
+  app.add_option("--scenes", scene_dir, "scene directory")->capture_default_str();
+  app.add_option("--warmup", warmup, "steps before measuring")->capture_default_str()->check(CLI::Range(0, 100000));
+  app.add_option("--steps", steps, "measured steps per repeat")->capture_default_str()->check(CLI::Range(1, 100000));
+  app.add_option("--repeats", repeats, "repeats (fresh simulation each)")->capture_default_str()->check(CLI::Range(1, 1000));
+  app.add_option("--dam-sizes", dam_sizes, "dam break resolutions: particles across the column width a")
+      ->capture_default_str()->check(CLI::Range(4, 400));
+  app.add_option("--dam-cuda", dam_cuda_only, "an extra dam break resolution for cuda only (0: none)")->capture_default_str();
+  app.add_flag("--quick", quick, "small and short: a smoke test (under a minute)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (quick) {
+    warmup = 1;
+    steps = 2;
+    repeats = 1;
+    dam_sizes = {10};
+    dam_cuda_only = 0;
+  }
+  if (backends.empty()) {
+    backends.push_back("cpu");
+    for (const std::string& b : available_backends()) {
+      if (b == "cpu") continue;
+      std::string why;
+      if (b == "cuda" && !cuda_device_available(&why)) {
+        std::cerr << "cuda: skipped (" << why << ")\n";
+        continue;
+      }
+      backends.push_back(b);
+    }
+  }
+
+  std::vector<Workload> workloads{
+      {"thesis_cube_16", "thesis_perf_cube.json", {}, 241.0, 3.0, false},
+      {"thesis_cube_32", "thesis_perf_cube_32.json", {}, 2677.0, 18.0, false}};
+  if (quick) workloads.pop_back();
+  for (int n : dam_sizes)
+    workloads.push_back({"dam_break_" + std::to_string(n), "dam_break.json",
+                         {"resolution.particles_across=" + std::to_string(n)}, 0.0, 0.0, false});
+  if (dam_cuda_only > 0)
+    workloads.push_back({"dam_break_" + std::to_string(dam_cuda_only), "dam_break.json",
+                         {"resolution.particles_across=" + std::to_string(dam_cuda_only)}, 0.0, 0.0, true});
+
+  const std::string cpu = cpu_model(), gpu = cuda_device_name();
+  std::cout << "CPU: " << cpu << ", host threads: " << host_threads() << "\nGPU: " << (gpu.empty() ? "none" : gpu)
+            << "\nwarm-up " << warmup << " steps, " << steps << " measured steps x " << repeats << " repeats, median\n\n";
+
+  std::vector<Result> results;
+  try {
+    for (const Workload& w : workloads) {
+      double cpu_ms = 0.0;
+      for (const std::string& b : backends) {
+        if (w.cuda_only && b != "cuda") continue;
+        std::cerr << "  " << w.name << " on " << b << " ..." << std::flush;
+        Result r = run_one(scene_dir, w, b, warmup, steps, repeats);
+        std::cerr << " " << r.ms_per_step << " ms/step\n";
+        if (b == "cpu") cpu_ms = r.ms_per_step;
+        r.speedup_vs_cpu = cpu_ms > 0.0 ? cpu_ms / r.ms_per_step : 0.0;
+        results.push_back(r);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "\nerror: " << e.what() << "\n";
+    return 1;
+  }
+
+  std::printf("\n%-8s %-16s %10s %11s %14s %9s %11s %11s\n", "backend", "workload", "particles", "ms/step",
+              "particle-st/s", "vs cpu", "vs thesis", "vs thesis");
+  std::printf("%-8s %-16s %10s %11s %14s %9s %11s %11s\n", "", "", "", "(median)", "", "", "CPU", "GTX 480");
+  for (const Result& r : results) {
+    char vs_cpu[32] = "-", vs_tc[32] = "-", vs_tg[32] = "-";
+    if (r.speedup_vs_cpu > 0.0) std::snprintf(vs_cpu, sizeof vs_cpu, "%.2fx", r.speedup_vs_cpu);
+    if (r.thesis_cpu_ms > 0.0) std::snprintf(vs_tc, sizeof vs_tc, "%.0fx", r.thesis_cpu_ms / r.ms_per_step);
+    if (r.thesis_gpu_ms > 0.0) std::snprintf(vs_tg, sizeof vs_tg, "%.2fx", r.thesis_gpu_ms / r.ms_per_step);
+    std::printf("%-8s %-16s %10ld %11.3f %14.3e %9s %11s %11s\n", r.backend.c_str(), r.workload.c_str(), r.particles,
+                r.ms_per_step, 1e3 * double(r.particles) / r.ms_per_step, vs_cpu, vs_tc, vs_tg);
+  }
+  std::printf("\ntime by phase, ms per step:\n%-8s %-16s", "backend", "workload");
+  for (int p = 0; p < int(Phase::Count); ++p) std::printf(" %10s", phase_name(Phase(p)));
+  std::printf("\n");
+  for (const Result& r : results) {
+    std::printf("%-8s %-16s", r.backend.c_str(), r.workload.c_str());
+    for (int p = 0; p < int(Phase::Count); ++p) std::printf(" %10.3f", r.phases.seconds[std::size_t(p)]);
+    std::printf("\n");
+  }
+
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  std::ofstream csv(fs::path(out) / "bench.csv"), js(fs::path(out) / "bench.json");
+  if (!csv || !js) {
+    std::cerr << "error: cannot write results into " << out << "\n";
+    return 1;
+  }
+  csv << "# cpu: " << cpu << "; host threads: " << host_threads() << "; gpu: " << (gpu.empty() ? "none" : gpu) << "\n";
+  csv << "backend,workload,particles,ms_per_step,ms_min,ms_max,particle_steps_per_second,speedup_vs_cpu,thesis_cpu_ms,thesis_gpu_ms";
+  for (int p = 0; p < int(Phase::Count); ++p) csv << ",ms_" << phase_name(Phase(p));
+  csv << "\n";
+  js << "{\n  \"cpu\": \"" << json_escape(cpu) << "\",\n  \"host_threads\": " << host_threads() << ",\n  \"gpu\": \""
+     << json_escape(gpu) << "\",\n  \"warmup\": " << warmup << ", \"steps\": " << steps << ", \"repeats\": " << repeats
+     << ",\n  \"results\": [\n";
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const Result& r = results[i];
+    const double pss = 1e3 * double(r.particles) / r.ms_per_step;
+    csv << r.backend << ',' << r.workload << ',' << r.particles << ',' << r.ms_per_step << ',' << r.ms_min << ','
+        << r.ms_max << ',' << pss << ',' << r.speedup_vs_cpu << ',' << r.thesis_cpu_ms << ',' << r.thesis_gpu_ms;
+    js << "    {\"backend\": \"" << r.backend << "\", \"workload\": \"" << r.workload << "\", \"particles\": " << r.particles
+       << ", \"ms_per_step\": " << r.ms_per_step << ", \"ms_min\": " << r.ms_min << ", \"ms_max\": " << r.ms_max
+       << ", \"particle_steps_per_second\": " << pss << ", \"speedup_vs_cpu\": " << r.speedup_vs_cpu << ", \"phases_ms\": {";
+    for (int p = 0; p < int(Phase::Count); ++p) {
+      csv << ',' << r.phases.seconds[std::size_t(p)];
+      js << (p ? ", " : "") << '"' << phase_name(Phase(p)) << "\": " << r.phases.seconds[std::size_t(p)];
+    }
+    csv << "\n";
+    js << "}}" << (i + 1 < results.size() ? "," : "") << "\n";
+  }
+  js << "  ]\n}\n";
+  std::cout << "\nwritten: " << (fs::path(out) / "bench.csv").string() << ", " << (fs::path(out) / "bench.json").string() << "\n";
+  return 0;
+}
