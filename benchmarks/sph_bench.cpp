@@ -212,10 +212,9 @@ int main(int argc, char** argv) {
     std::cerr << "error: cannot write results into " << out << "\n";
     return 1;
   }
-  csv << "# cpu: " << cpu << "; host threads: " << host_threads() << "; gpu: " << (gpu.empty() ? "none" : gpu) << "\n";
   csv << "backend,workload,particles,ms_per_step,ms_min,ms_max,particle_steps_per_second,speedup_vs_cpu,thesis_cpu_ms,thesis_gpu_ms";
   for (int p = 0; p < int(Phase::Count); ++p) csv << ",ms_" << phase_name(Phase(p));
-  csv << "\n";
+  csv << ",cpu,host_threads,gpu\n";
   js << "{\n  \"cpu\": \"" << json_escape(cpu) << "\",\n  \"host_threads\": " << host_threads() << ",\n  \"gpu\": \""
      << json_escape(gpu) << "\",\n  \"warmup\": " << warmup << ", \"steps\": " << steps << ", \"repeats\": " << repeats
      << ",\n  \"results\": [\n";
@@ -231,7 +230,7 @@ int main(int argc, char** argv) {
       csv << ',' << r.phases.seconds[std::size_t(p)];
       js << (p ? ", " : "") << '"' << phase_name(Phase(p)) << "\": " << r.phases.seconds[std::size_t(p)];
     }
-    csv << "\n";
+    csv << ",\"" << cpu << "\"," << host_threads() << ",\"" << (gpu.empty() ? "none" : gpu) << "\"\n";
     js << "}}" << (i + 1 < results.size() ? "," : "") << "\n";
   }
   js << "  ]\n}\n";
