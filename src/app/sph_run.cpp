@@ -52,7 +52,7 @@ const char* limit_name(StepLimit l) {
 void write_metrics_row(std::ofstream& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
   csv << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ','
       << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ',' << m.front_x << ',' << m.top_y
-      << ',' << m.particles << ',' << wall_ms << '\n';
+      << ',' << m.height_at_x0 << ',' << m.particles << ',' << wall_ms << '\n';
 }
 
 double median(std::vector<double> v) {
@@ -75,7 +75,8 @@ int run(const Options& o) {
   std::ofstream csv(csv_path);
   if (!csv) throw std::runtime_error("cannot write " + csv_path);
   csv.precision(9);
-  csv << "time,dt,step,kinetic_energy,density_error_mean,density_error_max,v_max,front_x,top_y,particles,wall_ms\n";
+  csv << "time,dt,step,kinetic_energy,density_error_mean,density_error_max,v_max,front_x,top_y,height_at_x0,particles,"
+         "wall_ms\n";
 
   Simulation sim(scene, factory, run_time);
   const Setup& st = sim.setup();
@@ -179,7 +180,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "sph_run: run an SPH scene headless and record what happens.\n\n"
       "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, density_error_mean, density_error_max, v_max,\n"
-      "front_x, top_y, particles, wall_ms) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply\n"
+      "front_x, top_y, height_at_x0, particles, wall_ms) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply\n"
       "(ParaView, Blender). Ends with a summary: particles, steps, median ms_per_step, time by phase.\n"
       "Exit status: 0 done, 1 bad input, 3 the simulation became unstable."};
   app.add_option("scene", o.scene, "scene file (JSON), for example scenes/dam_break.json")->required();

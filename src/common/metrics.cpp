@@ -14,7 +14,7 @@ double robust_max(std::vector<float> v) {
 
 Metrics measure(const SimConstants& c, const ParticleState& ps) {
   Metrics m;
-  std::vector<float> xs, ys;
+  std::vector<float> xs, ys, wall_ys;
   xs.reserve(ps.size());
   ys.reserve(ps.size());
   long fluid = 0;
@@ -33,11 +33,13 @@ Metrics measure(const SimConstants& c, const ParticleState& ps) {
     m.density_error_max = std::max(m.density_error_max, err);
     xs.push_back(ps.pos[i].x);
     ys.push_back(ps.pos[i].y);
+    if (std::fabs(ps.pos[i].x) < c.kernel.h) wall_ys.push_back(ps.pos[i].y);
     ++fluid;
   }
   if (fluid > 0) m.density_error_mean /= double(fluid);
   m.front_x = robust_max(std::move(xs));
   m.top_y = robust_max(std::move(ys));
+  m.height_at_x0 = robust_max(std::move(wall_ys));
   m.particles = fluid;
   return m;
 }

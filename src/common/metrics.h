@@ -15,6 +15,7 @@ struct Metrics {
   double v_max = 0.0;
   double front_x = 0.0;   // largest x of the fluid, ignoring the few most extreme particles (see .cpp)
   double top_y = 0.0;     // largest y of the fluid, same rule
+  double height_at_x0 = 0.0;  // largest y of the fluid within h of the plane x = 0 (dam break column), same rule
   double momentum[3] = {0.0, 0.0, 0.0};
   long particles = 0;
 };

@@ -1,0 +1,164 @@
+#!/usr/bin/python3
+"""Validation runs with an error figure each: the dam break against Martin & Moyce (1952), the water jet
+against the thesis's AXIM range, and the hydrostatic tank. Runs build/sph_run, writes OUT/validation.json,
+OUT/validation.md and OUT/dam_break_vs_experiment.png.
+
+usage: benchmarks/validate.py [--backend host] [--quick] [--out out/validation]
+Needs Debian's python3-matplotlib (and python3-numpy, which it pulls in).
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REFERENCE = os.path.join(os.path.dirname(ROOT), "shared", "reference-data")
+A = 0.05715  # Martin & Moyce column width [m]
+G = 9.81
+
+
+def run(args, label, scene, time_s, out, sets=(), frames_every=0.0, metrics_every=0.002):
+    cmd = [os.path.join(args.build, "sph_run"), os.path.join(ROOT, "scenes", scene), "--backend", args.backend,
+           "--time", str(time_s), "--out", out, "--frames-every", str(frames_every),
+           "--metrics-every", str(metrics_every), "--quiet"]
+    for s in sets:
+        cmd += ["--set", s]
+    print(f"[{label}] {' '.join(cmd[1:])}", flush=True)
+    t0 = time.time()
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    if proc.returncode != 0:
+        sys.exit(f"error: {label} failed ({proc.returncode}):\n{proc.stderr}")
+    summary = dict(re.findall(r"^(\w+): (.*)$", proc.stdout, re.M))
+    print(f"[{label}] done in {time.time() - t0:.0f} s: {summary.get('particles')} particles, "
+          f"{summary.get('steps')} steps, {summary.get('ms_per_step')} ms/step", flush=True)
+    with open(os.path.join(out, "metrics.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}, summary, time.time() - t0
+
+
+def read_reference(name):
+    with open(os.path.join(REFERENCE, name)) as f:
+        lines = [l for l in f if l.strip() and not l.startswith("#")]
+    rows = list(csv.reader(lines))
+    return np.array([[float(x) for x in r] for r in rows[1:]])
+
+
+def dam_break(args, out):
+    across = 12 if args.quick else 20
+    t_end = 0.2 if args.quick else 0.6
+    m, summary, wall = run(args, "dam break", "dam_break.json", t_end, os.path.join(out, "dam_break"),
+                           [f"resolution.particles_across={across}"])
+    T = m["time"] * math.sqrt(2 * G / A)
+    Z = m["front_x"] / A
+    tau = m["time"] * math.sqrt(G / A)
+    H = m["height_at_x0"] / (2 * A)
+    surge = read_reference("martin_moyce_1952_surge_front.csv")
+    column = read_reference("martin_moyce_1952_column_height.csv")
+    s_mask = (surge[:, 0] <= 3.0) & (surge[:, 0] <= T[-1])
+    z_sim = np.interp(surge[s_mask, 0], T, Z)
+    c_mask = column[:, 0] <= tau[-1]
+    h_sim = np.interp(column[c_mask, 0], tau, H)
+    res = {
+        "particles": int(summary["particles"]), "wall_seconds": wall, "simulated_seconds": float(summary["simulated_time"]),
+        "surge_front_mae_T_le_3": float(np.mean(np.abs(z_sim - surge[s_mask, 1]))), "surge_points": int(s_mask.sum()),
+        "column_height_mae": float(np.mean(np.abs(h_sim - column[c_mask, 1]))) if c_mask.any() else None,
+        "column_points": int(c_mask.sum()),
+    }
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(1, 2, figsize=(9, 3.6))
+        ax[0].plot(T, Z, label=f"SPH ({res['particles']} particles)")
+        ax[0].plot(surge[:, 0], surge[:, 1], "o", label="Martin & Moyce 1952")
+        ax[0].set_xlabel("T = t sqrt(2g/a)")
+        ax[0].set_ylabel("surge front Z = x/a")
+        ax[0].set_xlim(0, max(3.5, T[-1]))
+        ax[0].set_ylim(0.9, 5)
+        ax[0].legend()
+        ax[1].plot(tau, H, label="SPH")
+        ax[1].plot(column[:, 0], column[:, 1], "o", label="Martin & Moyce 1952")
+        ax[1].set_xlabel("tau = t sqrt(g/a)")
+        ax[1].set_ylabel("column height H = y/(2a)")
+        ax[1].legend()
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, "dam_break_vs_experiment.png"), dpi=120)
+    except ImportError:
+        print("matplotlib not installed: no chart (apt-get install python3-matplotlib)")
+    return res
+
+
+def water_jet(args, out):
+    sets = ["resolution.particles_across=7"] if args.quick else []
+    m, summary, wall = run(args, "water jet", "water_jet.json", 1.2 if args.quick else 1.5, os.path.join(out, "water_jet"),
+                           sets, metrics_every=0.01)
+    landed = m["time"] > 1.0  # the first particles land after about 0.85 s
+    rng = float(np.median(m["front_x"][landed]))
+    return {"particles": int(summary["particles"]), "wall_seconds": wall, "range_m": rng,
+            "error_vs_axim_3.97": (rng - 3.97) / 3.97, "error_vs_ballistic_4.02": (rng - 4.02) / 4.02}
+
+
+def hydrostatic(args, out):
+    d = os.path.join(out, "hydrostatic_tank")
+    m, summary, wall = run(args, "hydrostatic tank", "hydrostatic_tank.json", 1.0, d, frames_every=1.0, metrics_every=0.01)
+    frames = sorted(f for f in os.listdir(d) if f.startswith("frame_"))
+    with open(os.path.join(d, frames[-1]), "rb") as f:
+        header = b""
+        while not header.endswith(b"end_header\n"):
+            header += f.readline()
+        n = int(re.search(rb"element vertex (\d+)", header).group(1))
+        dt = np.dtype([("p", "<f4", 3), ("v", "<f4", 3), ("rho", "<f4"), ("pr", "<f4"), ("fluid", "u1"), ("id", "<i4")])
+        p = np.frombuffer(f.read(n * dt.itemsize), dtype=dt, count=n)
+    x, y, z = p["p"][:, 0], p["p"][:, 1], p["p"][:, 2]
+    spacing, width = 0.005, 0.05
+    h = 1.9695 * spacing  # cbrt(3 * 32 / (4 pi)) d
+    top = np.sort(y)[-3] + 0.5 * spacing
+    inner = (x > h) & (x < width - h) & (z > h) & (z < width - h) & (y > h) & (y < top - h)
+    slope = np.polyfit(y[inner], p["pr"][inner], 1)[0]
+    return {"particles": int(summary["particles"]), "wall_seconds": wall,
+            "interior_density_error_mean": float(np.mean(np.abs(p["rho"][inner] - 1000) / 1000)),
+            "all_density_error_mean": float(m["density_error_mean"][-1]),
+            "pressure_slope_rel_error": float((-slope - 1000 * G) / (1000 * G)), "column_height_m": float(top)}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--backend", default="host")
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "out", "validation"))
+    ap.add_argument("--quick", action="store_true", help="coarse and short: a smoke test")
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    results = {"backend": args.backend, "quick": args.quick,
+               "dam_break": dam_break(args, args.out), "water_jet": water_jet(args, args.out)}
+    if not args.quick:
+        results["hydrostatic_tank"] = hydrostatic(args, args.out)
+    with open(os.path.join(args.out, "validation.json"), "w") as f:
+        json.dump(results, f, indent=2)
+    db, wj = results["dam_break"], results["water_jet"]
+    lines = ["| run | figure | value | target |", "|---|---|---|---|",
+             f"| dam break ({db['particles']} particles) | surge front MAE, T <= 3 ({db['surge_points']} points) | "
+             f"{db['surge_front_mae_T_le_3']:.3f} | <= 0.15 |",
+             f"| dam break | column height MAE ({db['column_points']} points) | "
+             f"{db['column_height_mae'] if db['column_height_mae'] is None else round(db['column_height_mae'], 3)} | |",
+             f"| water jet ({wj['particles']} particles) | range | {wj['range_m']:.3f} m "
+             f"({100 * wj['error_vs_axim_3.97']:+.1f}% vs AXIM 3.97 m, {100 * wj['error_vs_ballistic_4.02']:+.1f}% vs ballistic 4.02 m) | within 3% of 3.97 m |"]
+    if "hydrostatic_tank" in results:
+        hs = results["hydrostatic_tank"]
+        lines += [f"| hydrostatic tank | interior density error | {100 * hs['interior_density_error_mean']:.2f}% | <= 1% |",
+                  f"| hydrostatic tank | pressure slope against rho0 g | {100 * hs['pressure_slope_rel_error']:+.1f}% | |"]
+    with open(os.path.join(args.out, "validation.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    print(f"\nwritten: {args.out}/validation.json, validation.md, dam_break_vs_experiment.png")
+
+
+if __name__ == "__main__":
+    main()
