@@ -80,7 +80,7 @@ def dam_break(args, out):
         ax[0].plot(surge[:, 0], surge[:, 1], "o", label="Martin & Moyce 1952")
         ax[0].set_xlabel("T = t sqrt(2g/a)")
         ax[0].set_ylabel("surge front Z = x/a")
-        ax[0].set_xlim(0, max(3.5, T[-1]))
+        ax[0].set_xlim(0, 3.6)
         ax[0].set_ylim(0.9, 5)
         ax[0].legend()
         ax[1].plot(tau, H, label="SPH")
