@@ -80,7 +80,7 @@ def stability_map(args, out):
                         return False
                     return float(m[-1]["v_max"]) < 5.0 * math.sqrt(2 * G * 2 * A)  # no runaway below the blow-up bound
 
-                lo, hi = 1e-5, 4e-3
+                lo, hi = 1e-5, 4e-3  # 6 bisections in log space: the answer is within about 10%
                 if not stable(lo):
                     best = 0.0
                 elif stable(hi):
@@ -91,7 +91,8 @@ def stability_map(args, out):
                         lo, hi = (mid, hi) if stable(mid) else (lo, mid)
                     best = lo
                 print(f"  stability: {integ:26s} {var:10s} {eos:6s} largest stable dt {best:.2e} s", flush=True)
-                rows.append({"integrator": integ, "variant": var, "eos": eos, "largest_stable_dt": best})
+                rows.append({"integrator": integ, "variant": var, "eos": eos, "largest_stable_dt": best,
+                             "simulated_seconds": t_run})
     write_csv(os.path.join(out, "stability_map.csv"), rows)
     return rows
 
@@ -188,7 +189,7 @@ def charts(out, stab, acc, bench):
         ax.set_xticks(np.arange(len(integs)) + 0.4 - width / 2)
         ax.set_xticklabels([i.replace("_", " ") for i in integs], fontsize=8)
         ax.set_ylabel("largest stable dt [ms]")
-        ax.set_title("Dam break (12 particles across a), fixed time step, 0.1 s")
+        ax.set_title(f"Dam break (12 particles across a), fixed time step, {stab[0]['simulated_seconds']} s simulated")
         ax.legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(os.path.join(out, "stability_map.png"), dpi=120)

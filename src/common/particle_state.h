@@ -21,27 +21,24 @@ struct Spawn {
   int32_t id;
 };
 
+// Every per-particle field, listed once: X(type, name). Wherever all fields are declared, resized, copied
+// or moved (here and in the device arrays), this list is expanded, so adding a field is one line.
+#define SPH_PARTICLE_FIELDS(X)                                                                     \
+  X(Vec3, pos) X(Vec3, vel) X(Vec3, vel_force) X(Vec3, acc) X(Vec3, xsph_dv) X(float, density)      \
+  X(float, near_density) X(float, pressure) X(float, near_pressure) X(float, age) X(uint8_t, fluid) \
+  X(int32_t, id)
+
 struct ParticleState {
-  std::vector<Vec3> pos, vel, vel_force, acc, xsph_dv;
-  std::vector<float> density, near_density, pressure, near_pressure, age;
-  std::vector<uint8_t> fluid;
-  std::vector<int32_t> id;
+#define SPH_DECLARE_FIELD(type, name) std::vector<type> name;
+  SPH_PARTICLE_FIELDS(SPH_DECLARE_FIELD)
+#undef SPH_DECLARE_FIELD
 
   std::size_t size() const { return pos.size(); }
 
   void resize(std::size_t n) {
-    pos.resize(n);
-    vel.resize(n);
-    vel_force.resize(n);
-    acc.resize(n);
-    xsph_dv.resize(n);
-    density.resize(n);
-    near_density.resize(n);
-    pressure.resize(n);
-    near_pressure.resize(n);
-    age.resize(n);
-    fluid.resize(n);
-    id.resize(n);
+#define SPH_RESIZE_FIELD(type, name) name.resize(n);
+    SPH_PARTICLE_FIELDS(SPH_RESIZE_FIELD)
+#undef SPH_RESIZE_FIELD
   }
 
   void append(const Spawn& s) {
@@ -63,18 +60,9 @@ struct ParticleState {
 
   // Copies particle `from` of `src` into slot `to` of this state (used by reordering and removal).
   void copy_particle(std::size_t to, const ParticleState& src, std::size_t from) {
-    pos[to] = src.pos[from];
-    vel[to] = src.vel[from];
-    vel_force[to] = src.vel_force[from];
-    acc[to] = src.acc[from];
-    xsph_dv[to] = src.xsph_dv[from];
-    density[to] = src.density[from];
-    near_density[to] = src.near_density[from];
-    pressure[to] = src.pressure[from];
-    near_pressure[to] = src.near_pressure[from];
-    age[to] = src.age[from];
-    fluid[to] = src.fluid[from];
-    id[to] = src.id[from];
+#define SPH_COPY_FIELD(type, name) name[to] = src.name[from];
+    SPH_PARTICLE_FIELDS(SPH_COPY_FIELD)
+#undef SPH_COPY_FIELD
   }
 
   ParticleView view() {

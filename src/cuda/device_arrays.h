@@ -12,43 +12,19 @@ namespace sph {
 namespace SPH_DEVICE_NS {
 
 struct DeviceArrays {
-  thrust::device_vector<Vec3> pos, vel, vel_force, acc, xsph_dv;
-  thrust::device_vector<float> density, near_density, pressure, near_pressure, age;
-  thrust::device_vector<uint8_t> fluid;
-  thrust::device_vector<int32_t> id;
+#define SPH_DECLARE_DEVICE_FIELD(type, name) thrust::device_vector<type> name;
+  SPH_PARTICLE_FIELDS(SPH_DECLARE_DEVICE_FIELD)
+#undef SPH_DECLARE_DEVICE_FIELD
 
   std::size_t size() const { return pos.size(); }
 
-  // Calls f(device_field, host_field) for every field, so copies and permutations list them once.
-  template <class State, class F>
-  void each(State& h, F&& f) {
-    f(pos, h.pos);
-    f(vel, h.vel);
-    f(vel_force, h.vel_force);
-    f(acc, h.acc);
-    f(xsph_dv, h.xsph_dv);
-    f(density, h.density);
-    f(near_density, h.near_density);
-    f(pressure, h.pressure);
-    f(near_pressure, h.near_pressure);
-    f(age, h.age);
-    f(fluid, h.fluid);
-    f(id, h.id);
-  }
-  template <class F>
-  void each_pair(DeviceArrays& o, F&& f) {
-    f(pos, o.pos);
-    f(vel, o.vel);
-    f(vel_force, o.vel_force);
-    f(acc, o.acc);
-    f(xsph_dv, o.xsph_dv);
-    f(density, o.density);
-    f(near_density, o.near_density);
-    f(pressure, o.pressure);
-    f(near_pressure, o.near_pressure);
-    f(age, o.age);
-    f(fluid, o.fluid);
-    f(id, o.id);
+  // Calls f(device_field, other_field) for every field of the list in particle_state.h, where other is a
+  // host ParticleState or another DeviceArrays.
+  template <class Other, class F>
+  void each(Other& other, F&& f) {
+#define SPH_EACH_FIELD(type, name) f(name, other.name);
+    SPH_PARTICLE_FIELDS(SPH_EACH_FIELD)
+#undef SPH_EACH_FIELD
   }
 
   void upload(const ParticleState& h) {
@@ -70,7 +46,7 @@ struct DeviceArrays {
   }
   // this[j] = src[index[j]] for every field; this takes index.size() particles.
   void gather_from(DeviceArrays& src, const thrust::device_vector<int32_t>& index) {
-    each_pair(src, [&](auto& dst_field, auto& src_field) {
+    each(src, [&](auto& dst_field, auto& src_field) {
       dst_field.resize(index.size());
       thrust::gather(index.begin(), index.end(), src_field.begin(), dst_field.begin());
     });
