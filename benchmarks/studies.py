@@ -4,7 +4,8 @@ pressure prevents, and accuracy against cost. Runs build/sph_run and writes CSV 
 
   stability map    largest stable fixed time step on the dam break, per integrator, for the two ways of
                    handling tensile instability (clamped pressure; negative pressure kept + near
-                   pressure), with Tait and ideal equations of state (bisection on dt)
+                   pressure), with Tait and ideal equations of state (bisection on dt); stable = no
+                   blow-up, no runaway speed, mean density within 10% of rest density
   clustering       zero-g drop with and without near pressure: smallest pair distance, clustered share
   accuracy-cost    dam-break surge-front error and water-jet range error against wall time per simulated
                    second, one point per back end and resolution; Pareto front marked
@@ -78,7 +79,9 @@ def stability_map(args, out):
                                           base + [f"time_step.dt={dt}"])
                     if rc != 0 or not m:
                         return False
-                    return float(m[-1]["v_max"]) < 5.0 * math.sqrt(2 * G * 2 * A)  # no runaway below the blow-up bound
+                    # No runaway below the blow-up bound, and still a liquid: mean density within 10% of rho0.
+                    return (float(m[-1]["v_max"]) < 5.0 * math.sqrt(2 * G * 2 * A) and
+                            float(m[-1]["density_error_mean"]) < 0.10)
 
                 lo, hi = 1e-5, 4e-3  # 6 bisections in log space: the answer is within about 10%
                 if not stable(lo):
@@ -235,14 +238,19 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "studies"))
     ap.add_argument("--bench", default="", help="sph_bench's bench.csv for the scaling chart")
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--only", choices=["stability", "clustering", "accuracy"], help="run one study only")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    print("[studies] stability map", flush=True)
-    stab = stability_map(args, args.out)
-    print("[studies] tensile clustering", flush=True)
-    clustering(args, args.out)
-    print("[studies] accuracy against cost", flush=True)
-    acc = accuracy_cost(args, args.out)
+    stab, acc = [], []
+    if args.only in (None, "stability"):
+        print("[studies] stability map", flush=True)
+        stab = stability_map(args, args.out)
+    if args.only in (None, "clustering"):
+        print("[studies] tensile clustering", flush=True)
+        clustering(args, args.out)
+    if args.only in (None, "accuracy"):
+        print("[studies] accuracy against cost", flush=True)
+        acc = accuracy_cost(args, args.out)
     charts(args.out, stab, acc, args.bench)
     print(f"[studies] written: {args.out}/stability_map.csv, clustering.csv, accuracy_cost.csv and the PNG charts")
 
