@@ -24,6 +24,8 @@ import time
 
 import numpy as np
 
+from ply_frames import read_ply
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REFERENCE = os.path.join(os.path.dirname(ROOT), "shared", "reference-data")
 A, G = 0.05715, 9.81
@@ -49,16 +51,6 @@ def sph_run(build, scene, t, out, sets, backend="host", frames_every=0.0, metric
         with open(mpath) as f:
             rows = list(csv.DictReader(f))
     return p.returncode, summary, rows, wall
-
-
-def read_ply(path):
-    with open(path, "rb") as f:
-        header = b""
-        while not header.endswith(b"end_header\n"):
-            header += f.readline()
-        n = int(re.search(rb"element vertex (\d+)", header).group(1))
-        dt = np.dtype([("p", "<f4", 3), ("v", "<f4", 3), ("rho", "<f4"), ("pr", "<f4"), ("fluid", "u1"), ("id", "<i4")])
-        return np.frombuffer(f.read(n * dt.itemsize), dtype=dt, count=n)
 
 
 def stability_map(args, out):
@@ -106,7 +98,7 @@ def clustering(args, out):
         d = os.path.join(out, f"drop_near_{k}")
         sph_run(args.build, "drop_zero_g.json", 0.5, d, [f"fluids.0.near_stiffness={k}"], frames_every=0.5)
         frames = sorted(f for f in os.listdir(d) if f.startswith("frame_"))
-        p = read_ply(os.path.join(d, frames[-1]))["p"].astype(np.float64)
+        p = read_ply(os.path.join(d, frames[-1]))[1]["p"].astype(np.float64)
         dist = np.sqrt(((p[:, None, :] - p[None, :, :]) ** 2).sum(-1))
         np.fill_diagonal(dist, np.inf)
         spacing = 0.1 / 12

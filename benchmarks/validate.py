@@ -18,6 +18,8 @@ import time
 
 import numpy as np
 
+from ply_frames import read_ply
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REFERENCE = os.path.join(os.path.dirname(ROOT), "shared", "reference-data")
 A = 0.05715  # Martin & Moyce column width [m]
@@ -95,16 +97,6 @@ def dam_break(args, out):
     return res
 
 
-def read_ply(path):
-    with open(path, "rb") as f:
-        header = b""
-        while not header.endswith(b"end_header\n"):
-            header += f.readline()
-        n = int(re.search(rb"element vertex (\d+)", header).group(1))
-        dt = np.dtype([("p", "<f4", 3), ("v", "<f4", 3), ("rho", "<f4"), ("pr", "<f4"), ("fluid", "u1"), ("id", "<i4")])
-        return np.frombuffer(f.read(n * dt.itemsize), dtype=dt, count=n)
-
-
 def water_jet(args, out):
     sets = ["resolution.particles_across=7"] if args.quick else []
     t_end = 1.2 if args.quick else 1.5
@@ -116,7 +108,7 @@ def water_jet(args, out):
     # slice; radius = root of the mean squared distance from the slice's centre in the y-z plane times
     # sqrt(2) (exact for a uniformly filled disc). Compared with a ballistic jet from (0, 3.5) at 4.76 m/s.
     frames = sorted(f for f in os.listdir(d) if f.startswith("frame_"))
-    p = read_ply(os.path.join(d, frames[-1]))
+    _, p = read_ply(os.path.join(d, frames[-1]))
     x, y, z = p["p"][:, 0], p["p"][:, 1], p["p"][:, 2]
     v0, y0 = 4.76, 3.5
     slices = []
@@ -171,16 +163,11 @@ def hydrostatic(args, out):
     d = os.path.join(out, "hydrostatic_tank")
     m, summary, wall = run(args, "hydrostatic tank", "hydrostatic_tank.json", 1.0, d, frames_every=1.0, metrics_every=0.01)
     frames = sorted(f for f in os.listdir(d) if f.startswith("frame_"))
-    with open(os.path.join(d, frames[-1]), "rb") as f:
-        header = b""
-        while not header.endswith(b"end_header\n"):
-            header += f.readline()
-        n = int(re.search(rb"element vertex (\d+)", header).group(1))
-        dt = np.dtype([("p", "<f4", 3), ("v", "<f4", 3), ("rho", "<f4"), ("pr", "<f4"), ("fluid", "u1"), ("id", "<i4")])
-        p = np.frombuffer(f.read(n * dt.itemsize), dtype=dt, count=n)
+    _, p = read_ply(os.path.join(d, frames[-1]))
     x, y, z = p["p"][:, 0], p["p"][:, 1], p["p"][:, 2]
-    spacing, width = 0.005, 0.05
-    h = 1.9695 * spacing  # cbrt(3 * 32 / (4 pi)) d
+    # spacing and h as sph_run derived them ("spacing: D m, h: H m, ...")
+    spacing, h = (float(v) for v in re.match(r"([0-9.eE+-]+) m, h: ([0-9.eE+-]+) m", summary["spacing"]).groups())
+    width = 0.05
     top = np.sort(y)[-3] + 0.5 * spacing
     inner = (x > h) & (x < width - h) & (z > h) & (z < width - h) & (y > h) & (y < top - h)
     slope = np.polyfit(y[inner], p["pr"][inner], 1)[0]

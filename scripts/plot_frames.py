@@ -7,25 +7,12 @@ Needs Debian's python3-matplotlib (apt-get install python3-matplotlib).
 import argparse
 import glob
 import os
-import re
 import sys
 
 import numpy as np
 
-
-def read_ply(path):
-    with open(path, "rb") as f:
-        header = b""
-        while not header.endswith(b"end_header\n"):
-            line = f.readline()
-            if not line:
-                sys.exit(f"error: {path}: not a PLY file written by sph_run")
-            header += line
-        text = header.decode()
-        n = int(re.search(r"element vertex (\d+)", text).group(1))
-        time = float(re.search(r"time ([-+0-9.eE]+)", text).group(1))
-        dtype = np.dtype([("p", "<f4", 3), ("v", "<f4", 3), ("rho", "<f4"), ("pr", "<f4"), ("fluid", "u1"), ("id", "<i4")])
-        return time, np.frombuffer(f.read(n * dtype.itemsize), dtype=dtype, count=n)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "benchmarks"))
+from ply_frames import read_ply  # noqa: E402
 
 
 def main():
