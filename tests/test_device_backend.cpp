@@ -116,6 +116,16 @@ TEST_CASE("device phases match the reference from the same state", "[device]") {
     for (auto& x : p.pos) x += sph::Vec3{float(s.spacing) * u(rng), float(s.spacing) * u(rng), float(s.spacing) * u(rng)};
     compare_evaluation(s.constants, p, 1e-5);
   }
+  SECTION("mirror walls: ghosts at walls, edges and corners, with no-slip ghost velocities") {
+    sph::Scene scene = scene_file("dam_break.json", {"sph.walls=mirror", "boundaries.0.slip=0"});
+    const sph::Setup s = sph::create_setup(scene, 1.0);
+    sph::ParticleState p = s.particles;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-0.3f, 0.3f);
+    for (auto& x : p.pos) x += sph::Vec3{float(s.spacing) * u(rng), float(s.spacing) * u(rng), float(s.spacing) * u(rng)};
+    for (auto& v : p.vel) v = sph::Vec3{u(rng), u(rng), u(rng)};
+    compare_evaluation(s.constants, p, 1e-5);
+  }
   SECTION("continuity density and Morris viscosity") {
     sph::Scene scene = scene_file("hydrostatic_tank.json", {"sph.density=continuity", "sph.viscosity=morris"});
     const sph::Setup s = sph::create_setup(scene, 1.0);

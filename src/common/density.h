@@ -5,6 +5,7 @@
 #include "grid.h"
 #include "kernels.h"
 #include "params.h"
+#include "mirror_walls.h"
 
 namespace sph {
 
@@ -18,17 +19,28 @@ SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const
   const Vec3 va = p.vel_force[a];
   const bool summation = c.density == DensityMethod::Summation;
   float rho = 0.0f, rho_near = 0.0f, drho = 0.0f;
-  for_each_candidate(grid, xa, [&](int32_t b) {
-    const Vec3 xab = xa - p.pos[b];
-    const float r2 = length2(xab);
-    if (r2 >= k.h2) return;
-    const float mb = c.fluids[p.fluid[b]].mass;
+  auto add = [&](float mb, Vec3 xab, float r2, Vec3 vb) {
     if (summation) rho += mb * poly6(k, r2);
     if (c.near_enabled || !summation) {
       const float r = sqrtf(r2);
       if (c.near_enabled) rho_near += mb * near_kernel(k, r);
-      if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(va - p.vel_force[b], xab);
+      if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(va - vb, xab);
     }
+  };
+  // Mirror walls: the ghosts of the neighbours, the particle's own included (mirror_walls.h).
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
+  for_each_candidate(grid, xa, [&](int32_t b) {
+    const Vec3 xb = p.pos[b];
+    const float r2 = length2(xa - xb);
+    if (r2 >= k.h2) return;  // then no ghost of b is within h either
+    const float mb = c.fluids[p.fluid[b]].mass;
+    const Vec3 vb = p.vel_force[b];
+    add(mb, xa - xb, r2, vb);
+    if (walls.count > 0)
+      for_each_mirror(walls, xb, vb, [&](Vec3 xg, Vec3 vg) {
+        const float rg2 = length2(xa - xg);
+        if (rg2 < k.h2) add(mb, xa - xg, rg2, vg);
+      });
   });
   p.density[a] = summation ? rho : p.density[a] + dt * drho;
   p.near_density[a] = rho_near;

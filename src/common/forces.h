@@ -1,11 +1,13 @@
 // Phase "forces": acceleration of one particle from pressure and near pressure, viscosity, surface
 // tension and external forces; also the XSPH velocity correction when enabled. Every pair term is written
 // so that the pair (a, b) and the pair (b, a) give equal and opposite momentum changes for equal masses
-// and viscosities (tests/test_conservation.cpp).
+// and viscosities (tests/test_conservation.cpp). With mirror walls the ghosts of the neighbours add
+// pressure, near pressure and viscosity (mirror_walls.h); the walls then take up momentum.
 #pragma once
 
 #include "grid.h"
 #include "kernels.h"
+#include "mirror_walls.h"
 #include "params.h"
 
 namespace sph {
@@ -36,23 +38,19 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
   const float eps2 = 0.01f * k.h2;  // keeps Morris and artificial viscosity finite as r -> 0
   Vec3 acc{0.0f, 0.0f, 0.0f};
   Vec3 dv{0.0f, 0.0f, 0.0f};
-  for_each_candidate(grid, xa, [&](int32_t b) {
-    const Vec3 xab = xa - p.pos[b];
-    const float r2 = length2(xab);
-    // r2 = 0: the particle itself, or a coincident one, which has no direction to push along.
-    if (r2 >= k.h2 || r2 <= 0.0f) return;
+  // One neighbour, real or a wall's ghost: pressure, near pressure and viscosity; for real neighbours
+  // also surface tension and XSPH.
+  auto pair = [&](const FluidConstants& fb, Vec3 xab, float r2, Vec3 vb, float rhob, float pb, float pnb, bool real) {
     const float r = sqrtf(r2);
     const float inv_r = 1.0f / r;
-    const FluidConstants& fb = c.fluids[p.fluid[b]];
     const float mb = fb.mass;
-    const float rhob = p.density[b];
     const float inv_rhob = 1.0f / rhob;
-    const Vec3 vab = va - p.vel_force[b];
+    const Vec3 vab = va - vb;
     const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
 
-    float s = pressure_pair(c.pressure_form, mb, pa, inv_rhoa, p.pressure[b], inv_rhob) * grad;
+    float s = pressure_pair(c.pressure_form, mb, pa, inv_rhoa, pb, inv_rhob) * grad;
     if (c.near_enabled)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
-      s += pressure_pair(c.pressure_form, mb, pna, inv_rhoa, p.near_pressure[b], inv_rhob) * near_dwdr(k, r) * inv_r;
+      s += pressure_pair(c.pressure_form, mb, pna, inv_rhoa, pnb, inv_rhob) * near_dwdr(k, r) * inv_r;
 
     switch (c.viscosity) {
       case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
@@ -76,6 +74,7 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
         break;
     }
     acc += s * xab;
+    if (!real) return;
 
     if (c.surface_tension_enabled) {  // Becker & Teschner 2007 cohesion, thesis eq. 3.12
       const float kappa = 0.5f * (fa.cohesion + fb.cohesion);
@@ -84,6 +83,24 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
       dv -= (fa.xsph * mb * poly6(k, r2) / (0.5f * (rhoa + rhob))) * vab;
     }
+  };
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
+  for_each_candidate(grid, xa, [&](int32_t b) {
+    const Vec3 xb = p.pos[b];
+    const float r2 = length2(xa - xb);
+    if (r2 >= k.h2) return;  // then no ghost of b is within h either
+    const FluidConstants& fb = c.fluids[p.fluid[b]];
+    const Vec3 vb = p.vel_force[b];
+    const float rhob = p.density[b];
+    const float pb = p.pressure[b];
+    const float pnb = p.near_pressure[b];
+    // r2 = 0: the particle itself, or a coincident one, which has no direction to push along.
+    if (r2 > 0.0f) pair(fb, xa - xb, r2, vb, rhob, pb, pnb, true);
+    if (walls.count > 0)
+      for_each_mirror(walls, xb, vb, [&](Vec3 xg, Vec3 vg) {
+        const float rg2 = length2(xa - xg);
+        if (rg2 < k.h2 && rg2 > 0.0f) pair(fb, xa - xg, rg2, vg, rhob, ghost_pressure(c, pb, rhob, xb, xg), pnb, false);
+      });
   });
   acc += c.gravity;  // external forces, thesis eq. 2.25
   if (c.user_force.strength != 0.0f) {

@@ -125,6 +125,7 @@ Setup create_setup(const Scene& scene, double run_time) {
   c.viscosity = scene.viscosity;
   c.integrator = scene.integrator;
   c.clamp_negative_pressure = scene.clamp_negative_pressure;
+  c.mirror_walls = scene.mirror_walls;
   c.gravity = f3(scene.gravity);
   c.num_fluids = int32_t(scene.fluids.size());
   const double d3 = s.spacing * s.spacing * s.spacing;

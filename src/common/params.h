@@ -93,6 +93,7 @@ struct SimConstants {
   ViscosityModel viscosity;
   Integrator integrator;
   int32_t clamp_negative_pressure;  // 1: P = max(P, 0) (no tensile pull at a free surface)
+  int32_t mirror_walls;             // 1: neighbours near walls act also as their mirror images (mirror_walls.h)
   int32_t near_enabled;             // any fluid with near_stiffness > 0
   int32_t surface_tension_enabled;  // any fluid with surface_tension > 0
   int32_t xsph_enabled;             // any fluid with xsph > 0

@@ -105,6 +105,7 @@ struct Scene {
   PressureForm pressure_form = PressureForm::MonaghanSymmetric;
   ViscosityModel viscosity = ViscosityModel::Mueller;
   bool clamp_negative_pressure = false;
+  bool mirror_walls = false;           // sph.walls: "penalty" (thesis 3.5.1) or "mirror" (mirror_walls.h)
   Integrator integrator = Integrator::ModifiedVelocityVerlet;
   TimeStepSpec time_step;
   Vec3d gravity{0.0, -9.81, 0.0};

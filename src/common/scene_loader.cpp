@@ -405,7 +405,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
 
   if (r.has("sph")) {
     ObjectReader sr(r.raw("sph"), source, "sph");
-    sr.allow({"density", "equation_of_state", "pressure_force", "viscosity", "negative_pressure"});
+    sr.allow({"density", "equation_of_state", "pressure_force", "viscosity", "negative_pressure", "walls"});
     s.density = sr.choice<DensityMethod>("density", s.density,
                                          {{"summation", DensityMethod::Summation}, {"continuity", DensityMethod::Continuity}});
     s.eos = sr.choice<EquationOfState>("equation_of_state", s.eos,
@@ -418,6 +418,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
                                              {"morris", ViscosityModel::Morris},
                                              {"artificial", ViscosityModel::Artificial}});
     s.clamp_negative_pressure = sr.choice<bool>("negative_pressure", false, {{"keep", false}, {"clamp", true}});
+    s.mirror_walls = sr.choice<bool>("walls", false, {{"penalty", false}, {"mirror", true}});
     sr.finish();
   }
 

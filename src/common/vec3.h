@@ -30,6 +30,7 @@ SPH_HD inline Vec3& operator-=(Vec3& a, Vec3 b) {
   return a;
 }
 SPH_HD inline float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+SPH_HD inline Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 SPH_HD inline float length2(Vec3 a) { return dot(a, a); }
 SPH_HD inline float length(Vec3 a) { return sqrtf(dot(a, a)); }
 

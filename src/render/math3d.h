@@ -10,7 +10,6 @@ namespace sph::render {
 
 using Mat4 = std::array<float, 16>;  // column-major: m[col * 4 + row]
 
-inline Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline Vec3 normalise(Vec3 a) {
   const float l = length(a);
   return l > 0.0f ? (1.0f / l) * a : a;
