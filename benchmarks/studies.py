@@ -8,7 +8,8 @@ pressure prevents, and accuracy against cost. Runs build/sph_run and writes CSV 
                    blow-up, no runaway speed, mean density within 10% of rest density
   clustering       zero-g drop with and without near pressure: smallest pair distance, clustered share
   accuracy-cost    dam-break surge-front error and water-jet range error against wall time per simulated
-                   second, one point per back end and resolution; Pareto front marked
+                   second, one point per method (integrator, equation of state, tensile handling, walls), back end,
+                   resolution and time step; unstable runs listed; Pareto front marked
   scaling          ms per step against particles, per back end (from sph_bench's bench.csv, if given)
 
 usage: benchmarks/studies.py [--quick] [--out out/studies] [--bench out/bench/bench.csv]
@@ -32,6 +33,10 @@ A, G = 0.05715, 9.81
 INTEGRATORS = ["explicit_euler", "semi_implicit_euler", "velocity_verlet", "modified_velocity_verlet", "leapfrog"]
 VARIANTS = {"clamp": ["sph.negative_pressure=clamp", "fluids.0.near_stiffness=0"],
             "keep+near": ["sph.negative_pressure=keep", "fluids.0.near_stiffness=4"]}
+# Method variants in the accuracy study, against each scene's own settings ("scene").
+ACCURACY_VARIANTS = {"dam_break": {"scene": [], "ideal": ["sph.equation_of_state=ideal"], "keep+near": VARIANTS["keep+near"],
+                                   "mirror": ["sph.walls=mirror"]},
+                     "water_jet": {"scene": []}}
 
 
 def sph_run(build, scene, t, out, sets, backend="host", frames_every=0.0, metrics_every=0.005):
@@ -120,32 +125,62 @@ def surge_error(rows):
     return float(np.mean(np.abs(np.interp(ref[:, 0], T, Z) - ref[:, 1])))
 
 
+def jet_range_error(rows):
+    landed = [float(r["front_x"]) for r in rows if float(r["time"]) > 1.0]  # first landing after about 0.85 s
+    return abs(float(np.median(landed)) - 3.97) / 3.97 if landed else float("nan")
+
+
+# One accuracy-against-cost point: run the case, measure its error, or mark it unstable (exit status 3).
+CASES = {"dam_break": ("dam_break.json", 0.17, 0.002, surge_error),  # 0.17 s is T = 3.15
+         "water_jet": ("water_jet.json", 1.2, 0.01, jet_range_error)}
+
+
+def accuracy_point(args, out, case, backend, resolution, integrator, variant, dt):
+    scene, t_end, metrics_every, error = CASES[case]
+    sets = [f"resolution.particles_across={resolution}", f"integrator={integrator}"] + ACCURACY_VARIANTS[case][variant]
+    if dt != "scene":
+        sets += ["time_step.mode=adaptive"] if dt == "adaptive" else ["time_step.mode=fixed", f"time_step.dt={dt}"]
+    rc, s, m, wall = sph_run(args.build, scene, t_end, os.path.join(out, "acc_run"), sets, backend=backend,
+                             metrics_every=metrics_every)
+    stable = rc == 0 and bool(m)
+    row = {"case": case, "integrator": integrator, "variant": variant, "backend": backend, "resolution": resolution,
+           "particles": int(s.get("particles", 0)), "dt": dt, "steps": int(s.get("steps", 0)), "stable": stable,
+           "wall_per_simulated_second": wall / float(s["simulated_time"]) if stable else float("nan"),
+           "error": error(m) if stable else float("nan")}
+    dt_text = dt if dt in ("adaptive", "scene") else f"{float(dt) * 1e3:g} ms"
+    result = (f"error {row['error']:.3f}, {row['wall_per_simulated_second']:.1f} s per simulated s" if stable
+              else "unstable")
+    print(f"  accuracy-cost: {case} {resolution:2d} across, {integrator} ({variant}), dt {dt_text}, {backend}: "
+          f"{row['particles']} particles, {result}", flush=True)
+    return row
+
+
 def accuracy_cost(args, out):
-    rows = []
-    backends = ["cpu", "host"]
-    sizes = [10] if args.quick else [12, 16, 20, 26]
-    t_end = 0.17  # T = 3.15
-    for n in sizes:
-        for b in backends:
-            rc, s, m, wall = sph_run(args.build, "dam_break.json", t_end, os.path.join(out, "acc_run"),
-                                     [f"resolution.particles_across={n}"], backend=b, metrics_every=0.002)
-            if rc != 0:
-                continue
-            rows.append({"case": "dam_break", "backend": b, "resolution": n, "particles": int(s["particles"]),
-                         "wall_per_simulated_second": wall / float(s["simulated_time"]), "error": surge_error(m)})
-            print(f"  accuracy-cost: dam break {n:3d} across on {b:4s}: {rows[-1]['particles']} particles, "
-                  f"error {rows[-1]['error']:.3f}, {rows[-1]['wall_per_simulated_second']:.0f} s per simulated s", flush=True)
-    jet_sizes = [6] if args.quick else [7, 10, 13]
-    for n in jet_sizes:
-        rc, s, m, wall = sph_run(args.build, "water_jet.json", 1.2, os.path.join(out, "acc_run"),
-                                 [f"resolution.particles_across={n}"], backend="host", metrics_every=0.01)
-        if rc != 0:
-            continue
-        landed = [float(r["front_x"]) for r in m if float(r["time"]) > 1.0]
-        rng = float(np.median(landed))
-        rows.append({"case": "water_jet", "backend": "host", "resolution": n, "particles": int(s["particles"]),
-                     "wall_per_simulated_second": wall / float(s["simulated_time"]), "error": abs(rng - 3.97) / 3.97})
-        print(f"  accuracy-cost: water jet {n} across: range {rng:.3f} m, error {100 * rows[-1]['error']:.1f}%", flush=True)
+    """Points along four axes: resolution, back end, method (integrator; equation of state; clamped pressure
+    or kept pressure with near pressure; penalty or mirror walls) and time step (the scene's adaptive step
+    or a fixed one)."""
+    mvv = "modified_velocity_verlet"
+    points = []  # (case, backend, resolution, integrator, variant, dt)
+    if args.quick:
+        points += [("dam_break", b, 10, mvv, "scene", "scene") for b in ("cpu", "host")]
+        points += [("dam_break", "host", 10, i, "scene", "3e-4") for i in ("semi_implicit_euler", mvv)]
+        points += [("water_jet", "host", 6, mvv, "scene", "scene")]
+    else:
+        # resolution and back end: cpu only where it fits the time budget (it gives the same answers)
+        points += [("dam_break", "host", n, mvv, "scene", "scene") for n in (12, 16, 20, 26)]
+        points += [("dam_break", "cpu", n, mvv, "scene", "scene") for n in (12, 16)]
+        points += [("dam_break", "host", n, mvv, "scene", "2e-4") for n in (20, 26)]  # fixed step, finer particles
+        # method and time step at 16 across
+        for integ in INTEGRATORS:
+            for dt in ("2e-4", "3.5e-4") if integ != "explicit_euler" else ("5e-5",):
+                points.append(("dam_break", "host", 16, integ, "scene", dt))
+        points += [("dam_break", "host", 16, i, "scene", "scene") for i in INTEGRATORS if i not in (mvv, "explicit_euler")]
+        points += [("dam_break", "host", 16, mvv, v, dt) for v in ("ideal", "keep+near", "mirror") for dt in ("scene", "2e-4")]
+        # water jet: resolution with the thesis's method (dt 1 ms), then integrators and time steps at 7 across
+        points += [("water_jet", "host", n, mvv, "scene", "scene") for n in (7, 10, 13)]
+        points += [("water_jet", "host", 7, i, "scene", "scene") for i in INTEGRATORS if i != mvv]
+        points += [("water_jet", "host", 7, mvv, "scene", dt) for dt in ("5e-4", "2e-3")]
+    rows = [accuracy_point(args, out, *p) for p in points]
     write_csv(os.path.join(out, "accuracy_cost.csv"), rows)
     return rows
 
@@ -189,25 +224,52 @@ def charts(out, stab, acc, bench):
         fig.tight_layout()
         fig.savefig(os.path.join(out, "stability_map.png"), dpi=120)
     if acc:
-        fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+        colours = dict(zip(INTEGRATORS, ["tab:gray", "tab:green", "tab:orange", "tab:blue", "tab:purple"]))
+
+        def marker(r):
+            if r["variant"] != "scene":
+                return {"ideal": "P", "keep+near": "X", "mirror": "D"}[r["variant"]]
+            if r["dt"] == "scene":
+                return "o"
+            dt = float(r["dt"])
+            if r["case"] == "water_jet":
+                return "s" if dt < 1e-3 else "^"
+            return "v" if dt <= 1e-4 else ("s" if dt <= 2.5e-4 else "^")
+
+        fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
         for ax, case, label in ((axes[0], "dam_break", "surge front error (MAE in Z, T <= 3)"),
                                 (axes[1], "water_jet", "jet range error (fraction of 3.97 m)")):
-            pts = [r for r in acc if r["case"] == case]
+            pts = [r for r in acc if r["case"] == case and r["stable"]]
             if not pts:
                 continue
-            for b, marker in (("cpu", "o"), ("host", "s")):
-                sel = [r for r in pts if r["backend"] == b]
-                ax.scatter([r["wall_per_simulated_second"] for r in sel], [r["error"] for r in sel], marker=marker, label=b)
-                for r in sel:
-                    ax.annotate(f"{r['particles'] // 1000}k", (r["wall_per_simulated_second"], r["error"]), fontsize=7)
+            for r in pts:
+                c = colours[r["integrator"]]
+                ax.scatter(r["wall_per_simulated_second"], r["error"], marker=marker(r), s=40,
+                           facecolors="none" if r["backend"] == "cpu" else c, edgecolors=c)
+                if r["integrator"] == "modified_velocity_verlet" and r["variant"] == "scene" and r["dt"] == "scene":
+                    ax.annotate(f"{r['particles'] / 1000:.1f}k", (r["wall_per_simulated_second"], r["error"]),
+                                fontsize=7, xytext=(4, 3), textcoords="offset points")
             front = pareto([(r["wall_per_simulated_second"], r["error"]) for r in pts])
-            ax.plot([pts[i]["wall_per_simulated_second"] for i in front], [pts[i]["error"] for i in front], "k--", lw=1,
-                    label="Pareto front")
+            ax.plot([pts[i]["wall_per_simulated_second"] for i in front], [pts[i]["error"] for i in front], "k--", lw=1)
+            unstable = [r for r in acc if r["case"] == case and not r["stable"]]
+            if unstable:
+                ax.text(0.01, 0.01, "unstable: " + "; ".join(
+                    f"{r['integrator'].replace('_', ' ')} {r['variant'] if r['variant'] != 'scene' else ''} dt {r['dt']}"
+                    for r in unstable), transform=ax.transAxes, fontsize=6, va="bottom", wrap=True)
             ax.set_xscale("log")
-            ax.set_xlabel("wall seconds per simulated second")
+            ax.set_xlabel("wall seconds per simulated second (log)")
             ax.set_ylabel(label)
-            ax.legend(fontsize=8)
-        fig.tight_layout()
+            ax.set_title({"dam_break": "Dam break vs Martin & Moyce", "water_jet": "Water jet vs AXIM range"}[case])
+        from matplotlib.lines import Line2D
+        handles = [Line2D([], [], ls="", marker="o", color=colours[i], label=i.replace("_", " ")) for i in INTEGRATORS]
+        handles += [Line2D([], [], ls="", marker=m, color="k", markerfacecolor=f, label=l) for m, f, l in (
+            ("o", "k", "scene's time step, host"), ("o", "none", "the same on cpu"),
+            ("v", "k", "fixed dt 0.05 ms (dam)"), ("s", "k", "fixed dt 0.2 ms (dam), 0.5 ms (jet)"),
+            ("^", "k", "fixed dt 0.35 ms (dam), 2 ms (jet)"), ("P", "k", "ideal gas EOS, else Tait"),
+            ("X", "k", "kept pressure + near pressure,\nelse clamped"), ("D", "k", "mirror walls, else penalty"))]
+        handles.append(Line2D([], [], ls="--", color="k", lw=1, label="Pareto front"))
+        fig.legend(handles=handles, loc="center right", fontsize=7)
+        fig.tight_layout(rect=(0, 0, 0.8, 1))
         fig.savefig(os.path.join(out, "accuracy_cost.png"), dpi=120)
     if bench and os.path.exists(bench):
         with open(bench) as f:
