@@ -19,29 +19,40 @@ SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const
   const Vec3 va = p.vel_force[a];
   const bool summation = c.density == DensityMethod::Summation;
   float rho = 0.0f, rho_near = 0.0f, drho = 0.0f;
-  auto add = [&](float mb, Vec3 xab, float r2, Vec3 vb) {
+  for_each_candidate(grid, xa, [&](int32_t b) {
+    const Vec3 xab = xa - p.pos[b];
+    const float r2 = length2(xab);
+    if (r2 >= k.h2) return;
+    const float mb = c.fluids[p.fluid[b]].mass;
     if (summation) rho += mb * poly6(k, r2);
     if (c.near_enabled || !summation) {
       const float r = sqrtf(r2);
       if (c.near_enabled) rho_near += mb * near_kernel(k, r);
-      if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(va - vb, xab);
+      if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(va - p.vel_force[b], xab);
     }
-  };
-  // Mirror walls: the ghosts of the neighbours, the particle's own included (mirror_walls.h).
-  const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
-  for_each_candidate(grid, xa, [&](int32_t b) {
-    const Vec3 xb = p.pos[b];
-    const float r2 = length2(xa - xb);
-    if (r2 >= k.h2) return;  // then no ghost of b is within h either
-    const float mb = c.fluids[p.fluid[b]].mass;
-    const Vec3 vb = p.vel_force[b];
-    add(mb, xa - xb, r2, vb);
-    if (walls.count > 0)
-      for_each_mirror(walls, xb, vb, [&](Vec3 xg, Vec3 vg) {
-        const float rg2 = length2(xa - xg);
-        if (rg2 < k.h2) add(mb, xa - xg, rg2, vg);
-      });
   });
+  // Mirror walls: the ghosts of the neighbours, the particle's own included (mirror_walls.h). A second
+  // pass, so the loop above stays as lean as without walls.
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
+  if (walls.count > 0)
+    for_each_candidate(grid, xa, [&](int32_t b) {
+      const Vec3 xb = p.pos[b];
+      if (length2(xa - xb) >= k.h2) return;  // then no ghost of b is within h either
+      const float mb = c.fluids[p.fluid[b]].mass;
+      for (int32_t image = 1; image < image_count(walls); ++image) {
+        Vec3 xg = xb, vg = p.vel_force[b];
+        mirror_image(walls, image, xg, vg);
+        const Vec3 xag = xa - xg;
+        const float r2 = length2(xag);
+        if (r2 >= k.h2) continue;
+        if (summation) rho += mb * poly6(k, r2);
+        if (c.near_enabled || !summation) {
+          const float r = sqrtf(r2);
+          if (c.near_enabled) rho_near += mb * near_kernel(k, r);
+          if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(va - vg, xag);
+        }
+      }
+    });
   p.density[a] = summation ? rho : p.density[a] + dt * drho;
   p.near_density[a] = rho_near;
 }

@@ -21,6 +21,52 @@ SPH_HD inline float pressure_pair(PressureForm form, float mb, float pa, float i
   return -0.5f * mb * (pa + pb) * inv_rhoa * inv_rhob;
 }
 
+// The pair terms a particle a gets from a neighbour b or from a wall's ghost of b: pressure, near pressure
+// and viscosity, added to acc. xab = x_a - x_b, vab = v_a - v_b, 0 < r2 < h^2.
+struct PairSide {  // what the pair needs of one side
+  const FluidConstants* fluid;
+  float rho, inv_rho, pressure, near_pressure;
+};
+
+SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const PairSide& a, const PairSide& b, Vec3 xab,
+                                                  float r2, Vec3 vab, Vec3& acc) {
+  const KernelCoeffs& k = c.kernel;
+  const float eps2 = 0.01f * k.h2;  // keeps Morris and artificial viscosity finite as r -> 0
+  const float r = sqrtf(r2);
+  const float inv_r = 1.0f / r;
+  const FluidConstants& fa = *a.fluid;
+  const FluidConstants& fb = *b.fluid;
+  const float mb = fb.mass;
+  const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
+
+  float s = pressure_pair(c.pressure_form, mb, a.pressure, a.inv_rho, b.pressure, b.inv_rho) * grad;
+  if (c.near_enabled)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
+    s += pressure_pair(c.pressure_form, mb, a.near_pressure, a.inv_rho, b.near_pressure, b.inv_rho) * near_dwdr(k, r) * inv_r;
+
+  switch (c.viscosity) {
+    case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
+      acc -= (fa.viscosity * mb * viscosity_laplacian(k, r) * a.inv_rho * b.inv_rho) * vab;
+      break;
+    case ViscosityModel::Morris:  // Morris 1997: sum m_b (mu_a + mu_b)/(rho_a rho_b) (x_ab.gradW)/(r^2+eps^2) v_ab
+      acc += (mb * (fa.viscosity + fb.viscosity) * grad * r2 * a.inv_rho * b.inv_rho / (r2 + eps2)) * vab;
+      break;
+    case ViscosityModel::Artificial: {  // thesis eq. 2.20-2.22 (beta = 0), approaching pairs only
+      const float vx = dot(vab, xab);
+      if (vx < 0.0f) {
+        const float mu_ab = k.h * vx / (r2 + eps2);
+        const float alpha = 0.5f * (fa.artificial_alpha + fb.artificial_alpha);
+        const float cbar = 0.5f * (fa.speed_of_sound + fb.speed_of_sound);
+        const float pi_ab = -alpha * cbar * mu_ab / (0.5f * (a.rho + b.rho));
+        s -= mb * pi_ab * grad;
+      }
+      break;
+    }
+    case ViscosityModel::None:
+      break;
+  }
+  acc += s * xab;
+}
+
 SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a) {
   if (p.age[a] < 0.0f) {  // inlet particle: kinematic until it leaves the inlet (thesis 4.1.6)
     p.acc[a] = Vec3{0.0f, 0.0f, 0.0f};
@@ -33,49 +79,19 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
   const Vec3 va = p.vel_force[a];
   const float rhoa = p.density[a];
   const float inv_rhoa = 1.0f / rhoa;
-  const float pa = p.pressure[a];
-  const float pna = p.near_pressure[a];
-  const float eps2 = 0.01f * k.h2;  // keeps Morris and artificial viscosity finite as r -> 0
+  const PairSide side_a{&fa, rhoa, inv_rhoa, p.pressure[a], p.near_pressure[a]};
   Vec3 acc{0.0f, 0.0f, 0.0f};
   Vec3 dv{0.0f, 0.0f, 0.0f};
-  // One neighbour, real or a wall's ghost: pressure, near pressure and viscosity; for real neighbours
-  // also surface tension and XSPH.
-  auto pair = [&](const FluidConstants& fb, Vec3 xab, float r2, Vec3 vb, float rhob, float pb, float pnb, bool real) {
-    const float r = sqrtf(r2);
-    const float inv_r = 1.0f / r;
+  for_each_candidate(grid, xa, [&](int32_t b) {
+    const Vec3 xab = xa - p.pos[b];
+    const float r2 = length2(xab);
+    // r2 = 0: the particle itself, or a coincident one, which has no direction to push along.
+    if (r2 >= k.h2 || r2 <= 0.0f) return;
+    const FluidConstants& fb = c.fluids[p.fluid[b]];
+    const float rhob = p.density[b];
+    const Vec3 vab = va - p.vel_force[b];
+    pressure_viscosity_pair(c, side_a, PairSide{&fb, rhob, 1.0f / rhob, p.pressure[b], p.near_pressure[b]}, xab, r2, vab, acc);
     const float mb = fb.mass;
-    const float inv_rhob = 1.0f / rhob;
-    const Vec3 vab = va - vb;
-    const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
-
-    float s = pressure_pair(c.pressure_form, mb, pa, inv_rhoa, pb, inv_rhob) * grad;
-    if (c.near_enabled)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
-      s += pressure_pair(c.pressure_form, mb, pna, inv_rhoa, pnb, inv_rhob) * near_dwdr(k, r) * inv_r;
-
-    switch (c.viscosity) {
-      case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
-        acc -= (fa.viscosity * mb * viscosity_laplacian(k, r) * inv_rhoa * inv_rhob) * vab;
-        break;
-      case ViscosityModel::Morris:  // Morris 1997: sum m_b (mu_a + mu_b)/(rho_a rho_b) (x_ab.gradW)/(r^2+eps^2) v_ab
-        acc += (mb * (fa.viscosity + fb.viscosity) * grad * r2 * inv_rhoa * inv_rhob / (r2 + eps2)) * vab;
-        break;
-      case ViscosityModel::Artificial: {  // thesis eq. 2.20-2.22 (beta = 0), approaching pairs only
-        const float vx = dot(vab, xab);
-        if (vx < 0.0f) {
-          const float mu_ab = k.h * vx / (r2 + eps2);
-          const float alpha = 0.5f * (fa.artificial_alpha + fb.artificial_alpha);
-          const float cbar = 0.5f * (fa.speed_of_sound + fb.speed_of_sound);
-          const float pi_ab = -alpha * cbar * mu_ab / (0.5f * (rhoa + rhob));
-          s -= mb * pi_ab * grad;
-        }
-        break;
-      }
-      case ViscosityModel::None:
-        break;
-    }
-    acc += s * xab;
-    if (!real) return;
-
     if (c.surface_tension_enabled) {  // Becker & Teschner 2007 cohesion, thesis eq. 3.12
       const float kappa = 0.5f * (fa.cohesion + fb.cohesion);
       acc -= (kappa * mb / fa.mass * poly6(k, r2)) * xab;
@@ -83,25 +99,26 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
       dv -= (fa.xsph * mb * poly6(k, r2) / (0.5f * (rhoa + rhob))) * vab;
     }
-  };
-  const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
-  for_each_candidate(grid, xa, [&](int32_t b) {
-    const Vec3 xb = p.pos[b];
-    const float r2 = length2(xa - xb);
-    if (r2 >= k.h2) return;  // then no ghost of b is within h either
-    const FluidConstants& fb = c.fluids[p.fluid[b]];
-    const Vec3 vb = p.vel_force[b];
-    const float rhob = p.density[b];
-    const float pb = p.pressure[b];
-    const float pnb = p.near_pressure[b];
-    // r2 = 0: the particle itself, or a coincident one, which has no direction to push along.
-    if (r2 > 0.0f) pair(fb, xa - xb, r2, vb, rhob, pb, pnb, true);
-    if (walls.count > 0)
-      for_each_mirror(walls, xb, vb, [&](Vec3 xg, Vec3 vg) {
-        const float rg2 = length2(xa - xg);
-        if (rg2 < k.h2 && rg2 > 0.0f) pair(fb, xa - xg, rg2, vg, rhob, ghost_pressure(c, pb, rhob, xb, xg), pnb, false);
-      });
   });
+  // Mirror walls: the ghosts of the neighbours, the particle's own included, add pressure, near pressure and
+  // viscosity (mirror_walls.h). A second pass, so the loop above stays as lean as without walls.
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
+  if (walls.count > 0)
+    for_each_candidate(grid, xa, [&](int32_t b) {
+      const Vec3 xb = p.pos[b];
+      if (length2(xa - xb) >= k.h2) return;  // then no ghost of b is within h either
+      const float rhob = p.density[b];
+      PairSide side_b{&c.fluids[p.fluid[b]], rhob, 1.0f / rhob, 0.0f, p.near_pressure[b]};
+      for (int32_t image = 1; image < image_count(walls); ++image) {
+        Vec3 xg = xb, vg = p.vel_force[b];
+        mirror_image(walls, image, xg, vg);
+        const Vec3 xag = xa - xg;
+        const float r2 = length2(xag);
+        if (r2 >= k.h2 || r2 <= 0.0f) continue;
+        side_b.pressure = ghost_pressure(c, p.pressure[b], rhob, xb, xg);
+        pressure_viscosity_pair(c, side_a, side_b, xag, r2, va - vg, acc);
+      }
+    });
   acc += c.gravity;  // external forces, thesis eq. 2.25
   if (c.user_force.strength != 0.0f) {
     const Vec3 to_point = c.user_force.point - xa;

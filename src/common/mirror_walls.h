@@ -65,19 +65,17 @@ SPH_HD inline NearWalls near_walls(const SimConstants& c, Vec3 x) {
   return w;
 }
 
-// Calls f(x_ghost, v_ghost) for each mirror image of (x, v): across every non-empty subset of the walls.
-template <class F>
-SPH_HD inline void for_each_mirror(const NearWalls& w, Vec3 x, Vec3 v, F&& f) {
-  for (int32_t mask = 1; mask < (1 << w.count); ++mask) {
-    Vec3 xg = x, vg = v;
-    for (int32_t i = 0; i < w.count; ++i) {
-      if (!(mask & (1 << i))) continue;
-      const Vec3 n = w.normal[i];
-      xg -= (2.0f * (dot(xg, n) - w.offset[i])) * n;
-      const float vn = dot(vg, n);
-      vg = (2.0f * w.slip[i] - 1.0f) * (vg - vn * n) - vn * n;
-    }
-    f(xg, vg);
+// Number of images of a neighbour: itself (image 0) and its ghosts, one per non-empty subset of the walls.
+SPH_HD inline int32_t image_count(const NearWalls& w) { return 1 << w.count; }
+
+// Turns (x, v) into its mirror image number `image` >= 1: reflected across each wall whose bit is set.
+SPH_HD inline void mirror_image(const NearWalls& w, int32_t image, Vec3& x, Vec3& v) {
+  for (int32_t i = 0; i < w.count; ++i) {
+    if (!(image & (1 << i))) continue;
+    const Vec3 n = w.normal[i];
+    x -= (2.0f * (dot(x, n) - w.offset[i])) * n;
+    const float vn = dot(v, n);
+    v = (2.0f * w.slip[i] - 1.0f) * (v - vn * n) - vn * n;
   }
 }
 

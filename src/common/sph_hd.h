@@ -7,3 +7,13 @@
 #else
 #define SPH_HD
 #endif
+
+// SPH_HD_ALWAYS_INLINE: for a pair body used at two sites (particles and wall ghosts), so that each loop
+// keeps its own inlined copy instead of a call per pair.
+#if defined(__CUDACC__)
+#define SPH_HD_ALWAYS_INLINE __host__ __device__ __forceinline__
+#elif defined(__GNUC__)
+#define SPH_HD_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SPH_HD_ALWAYS_INLINE inline
+#endif
