@@ -182,28 +182,36 @@ def water_jet(args, out):
 
 
 def hydrostatic(args, out):
-    """The scene as it is (mirror walls) and with penalty walls alone."""
+    """The scene as it is (mirror walls) and with penalty walls alone. Mirror walls return the energy of
+    the column's first acoustic mode (period 4 H / c0 = 27 ms) instead of absorbing it at the floor, so
+    after 1 s it still rings a little: the figures are averages over the frames of the last 0.1 s."""
     results = {}
+    every = 0.005
     for walls in ("mirror", "penalty"):
         d = os.path.join(out, f"hydrostatic_tank_{walls}")
         m, summary, wall = run(args, f"hydrostatic tank, {walls} walls", "hydrostatic_tank.json", 1.0, d,
-                               [f"sph.walls={walls}"], frames_every=1.0, metrics_every=0.01)
-        frames = sorted(f for f in os.listdir(d) if f.startswith("frame_"))
-        _, p = read_ply(os.path.join(d, frames[-1]))
-        x, y, z = p["p"][:, 0], p["p"][:, 1], p["p"][:, 2]
+                               [f"sph.walls={walls}"], frames_every=every, metrics_every=0.01)
         # spacing and h as sph_run derived them ("spacing: D m, h: H m, ...")
         spacing, h = (float(v) for v in re.match(r"([0-9.eE+-]+) m, h: ([0-9.eE+-]+) m", summary["spacing"]).groups())
         width = 0.05
-        top = np.sort(y)[-3] + 0.5 * spacing
-        inner = (x > h) & (x < width - h) & (z > h) & (z < width - h) & (y > h) & (y < top - h)
-        slope = np.polyfit(y[inner], p["pr"][inner], 1)[0]
-        # pressure everywhere against rho0 g (H - y), H the settled height, as a share of the bottom pressure
-        profile = float(np.sqrt(np.mean((p["pr"] - 1000 * G * (top - y)) ** 2)) / (1000 * G * top))
-        results[walls] = {"particles": int(summary["particles"]), "wall_seconds": wall,
-                          "interior_density_error_mean": float(np.mean(np.abs(p["rho"][inner] - 1000) / 1000)),
-                          "all_density_error_mean": float(m["density_error_mean"][-1]),
-                          "pressure_slope_rel_error": float((-slope - 1000 * G) / (1000 * G)),
-                          "pressure_profile_rms_error": profile, "column_height_m": float(top)}
+        frames = sorted(f for f in os.listdir(d) if f.startswith("frame_"))
+        figures = []
+        for name in frames:
+            if int(name[6:11]) * every < 0.9 - 1e-9:
+                continue
+            _, p = read_ply(os.path.join(d, name))
+            x, y, z = p["p"][:, 0], p["p"][:, 1], p["p"][:, 2]
+            top = np.sort(y)[-3] + 0.5 * spacing
+            inner = (x > h) & (x < width - h) & (z > h) & (z < width - h) & (y > h) & (y < top - h)
+            slope = np.polyfit(y[inner], p["pr"][inner], 1)[0]
+            # pressure everywhere against rho0 g (H - y), H the settled height, as a share of the bottom pressure
+            profile = np.sqrt(np.mean((p["pr"] - 1000 * G * (top - y)) ** 2)) / (1000 * G * top)
+            figures.append((np.mean(np.abs(p["rho"][inner] - 1000) / 1000), (-slope - 1000 * G) / (1000 * G), profile, top))
+        f = np.mean(np.array(figures), axis=0)
+        results[walls] = {"particles": int(summary["particles"]), "wall_seconds": wall, "frames_averaged": len(figures),
+                          "interior_density_error_mean": float(f[0]), "pressure_slope_rel_error": float(f[1]),
+                          "pressure_profile_rms_error": float(f[2]), "column_height_m": float(f[3]),
+                          "all_density_error_mean": float(m["density_error_mean"][-1])}
     return results
 
 
@@ -243,7 +251,7 @@ def main():
                       f"| hydrostatic tank, {walls} walls | pressure slope against rho0 g; pressure RMS error against "
                       f"rho0 g (H - y), share of the bottom pressure | {100 * hs['pressure_slope_rel_error']:+.1f}%; "
                       f"{100 * hs['pressure_profile_rms_error']:.1f}% | |",
-                      f"| hydrostatic tank, {walls} walls | column height after 1 s (initial 0.1 m) | {hs['column_height_m']:.4f} m | |"]
+                      f"| hydrostatic tank, {walls} walls | column height at 0.9 to 1 s (initial 0.1 m) | {hs['column_height_m']:.4f} m | |"]
     with open(os.path.join(args.out, "validation.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
