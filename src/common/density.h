@@ -12,6 +12,18 @@ namespace sph {
 // Summation, thesis eq. 2.10: rho_a = sum_b m_b W_poly6(r_ab), the particle itself included.
 // Continuity, thesis eq. 2.12: rho_a += dt * sum_b m_b (v_a - v_b) . grad W_ab (grad of Spiky).
 // Near density, thesis 3.1: rho_near_a = sum_b m_b W_near(r_ab).
+// One neighbour's share, real or a wall's ghost (xab = x_a - x_b, vab = v_a - v_b, r2 < h^2).
+SPH_HD_ALWAYS_INLINE void density_pair(const SimConstants& c, bool summation, float mb, Vec3 xab, float r2, Vec3 vab,
+                                       float& rho, float& rho_near, float& drho) {
+  const KernelCoeffs& k = c.kernel;
+  if (summation) rho += mb * poly6(k, r2);
+  if (c.near_enabled || !summation) {
+    const float r = sqrtf(r2);
+    if (c.near_enabled) rho_near += mb * near_kernel(k, r);
+    if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(vab, xab);
+  }
+}
+
 SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a,
                               float dt) {
   const KernelCoeffs& k = c.kernel;
@@ -23,13 +35,7 @@ SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const
     const Vec3 xab = xa - p.pos[b];
     const float r2 = length2(xab);
     if (r2 >= k.h2) return;
-    const float mb = c.fluids[p.fluid[b]].mass;
-    if (summation) rho += mb * poly6(k, r2);
-    if (c.near_enabled || !summation) {
-      const float r = sqrtf(r2);
-      if (c.near_enabled) rho_near += mb * near_kernel(k, r);
-      if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(va - p.vel_force[b], xab);
-    }
+    density_pair(c, summation, c.fluids[p.fluid[b]].mass, xab, r2, va - p.vel_force[b], rho, rho_near, drho);
   });
   // Mirror walls: the ghosts of the neighbours, the particle's own included (mirror_walls.h). A second
   // pass, so the loop above stays as lean as without walls.
@@ -44,13 +50,7 @@ SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const
         mirror_image(walls, image, xg, vg);
         const Vec3 xag = xa - xg;
         const float r2 = length2(xag);
-        if (r2 >= k.h2) continue;
-        if (summation) rho += mb * poly6(k, r2);
-        if (c.near_enabled || !summation) {
-          const float r = sqrtf(r2);
-          if (c.near_enabled) rho_near += mb * near_kernel(k, r);
-          if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(va - vg, xag);
-        }
+        if (r2 < k.h2) density_pair(c, summation, mb, xag, r2, va - vg, rho, rho_near, drho);
       }
     });
   p.density[a] = summation ? rho : p.density[a] + dt * drho;
