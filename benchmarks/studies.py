@@ -25,11 +25,10 @@ import time
 
 import numpy as np
 
+from experiments import G, A, AXIM_RANGE, dam_break_errors, jet_range
 from ply_frames import read_ply
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-REFERENCE = os.path.join(os.path.dirname(ROOT), "shared", "reference-data")
-A, G = 0.05715, 9.81
 INTEGRATORS = ["explicit_euler", "semi_implicit_euler", "velocity_verlet", "modified_velocity_verlet", "leapfrog"]
 VARIANTS = {"clamp": ["sph.negative_pressure=clamp", "fluids.0.near_stiffness=0"],
             "keep+near": ["sph.negative_pressure=keep", "fluids.0.near_stiffness=4"]}
@@ -116,18 +115,16 @@ def clustering(args, out):
     return rows
 
 
+def column(rows, key):
+    return np.array([float(r[key]) for r in rows])
+
+
 def surge_error(rows):
-    t = np.array([float(r["time"]) for r in rows])
-    T, Z = t * math.sqrt(2 * G / A), np.array([float(r["front_x"]) for r in rows]) / A
-    with open(os.path.join(REFERENCE, "martin_moyce_1952_surge_front.csv")) as f:
-        ref = np.array([[float(x) for x in l.split(",")] for l in f if l[0].isdigit()])
-    ref = ref[(ref[:, 0] <= 3.0) & (ref[:, 0] <= T[-1])]
-    return float(np.mean(np.abs(np.interp(ref[:, 0], T, Z) - ref[:, 1])))
+    return dam_break_errors(column(rows, "time"), column(rows, "front_x"), column(rows, "height_at_x0"))["surge_front_mae_T_le_3"]
 
 
 def jet_range_error(rows):
-    landed = [float(r["front_x"]) for r in rows if float(r["time"]) > 1.0]  # first landing after about 0.85 s
-    return abs(float(np.median(landed)) - 3.97) / 3.97 if landed else float("nan")
+    return abs(jet_range(column(rows, "time"), column(rows, "front_x")) - AXIM_RANGE) / AXIM_RANGE
 
 
 # One accuracy-against-cost point: run the case, measure its error, or mark it unstable (exit status 3).

@@ -18,12 +18,10 @@ import time
 
 import numpy as np
 
+from experiments import A, AXIM_RANGE, G, dam_break_curves, dam_break_errors, jet_range, read_reference
 from ply_frames import read_ply
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-REFERENCE = os.path.join(os.path.dirname(ROOT), "shared", "reference-data")
-A = 0.05715  # Martin & Moyce column width [m]
-G = 9.81
 
 
 def run(args, label, scene, time_s, out, sets=(), frames_every=0.0, metrics_every=0.002):
@@ -45,11 +43,21 @@ def run(args, label, scene, time_s, out, sets=(), frames_every=0.0, metrics_ever
     return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}, summary, time.time() - t0
 
 
-def read_reference(name):
-    with open(os.path.join(REFERENCE, name)) as f:
-        lines = [l for l in f if l.strip() and not l.startswith("#")]
-    rows = list(csv.reader(lines))
-    return np.array([[float(x) for x in r] for r in rows[1:]])
+def pyplot():
+    """matplotlib's pyplot drawing to files, or None (with a note) without Debian's python3-matplotlib."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        return plt
+    except ImportError:
+        print("matplotlib not installed: no chart (apt-get install python3-matplotlib)")
+        return None
+
+
+def save_chart(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
 
 
 def dam_break(args, out):
@@ -61,27 +69,13 @@ def dam_break(args, out):
     for walls, t_end in (("penalty", 0.2 if args.quick else 0.6), ("mirror", 0.1 if args.quick else 0.32)):
         m, summary, wall = run(args, f"dam break, {walls} walls", "dam_break.json", t_end,
                                os.path.join(out, f"dam_break_{walls}"), [f"resolution.particles_across={across}", f"sph.walls={walls}"])
-        T = m["time"] * math.sqrt(2 * G / A)
-        tau = m["time"] * math.sqrt(G / A)
-        Z = m["front_x"] / A
-        H = m["height_at_x0"] / (2 * A)
-        s_mask = (surge[:, 0] <= 3.0) & (surge[:, 0] <= T[-1])
-        c_mask = column[:, 0] <= tau[-1]
-        z_sim = np.interp(surge[s_mask, 0], T, Z)
-        h_sim = np.interp(column[c_mask, 0], tau, H)
-        results[walls] = {
-            "particles": int(summary["particles"]), "wall_seconds": wall, "simulated_seconds": float(summary["simulated_time"]),
-            "ms_per_step": float(summary["ms_per_step"]),
-            "surge_front_mae_T_le_3": float(np.mean(np.abs(z_sim - surge[s_mask, 1]))), "surge_points": int(s_mask.sum()),
-            "surge_front_mean_signed_error": float(np.mean(z_sim - surge[s_mask, 1])),
-            "column_height_mae": float(np.mean(np.abs(h_sim - column[c_mask, 1]))) if c_mask.any() else None,
-            "column_points": int(c_mask.sum()),
-        }
+        results[walls] = {"particles": int(summary["particles"]), "wall_seconds": wall,
+                          "simulated_seconds": float(summary["simulated_time"]), "ms_per_step": float(summary["ms_per_step"]),
+                          **dam_break_errors(m["time"], m["front_x"], m["height_at_x0"])}
+        T, Z, tau, H = dam_break_curves(m["time"], m["front_x"], m["height_at_x0"])
         curves[walls] = (T, Z, tau, H)
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+    plt = pyplot()
+    if plt:
         fig, ax = plt.subplots(1, 2, figsize=(9, 3.6))
         for walls, (T, Z, tau, H) in curves.items():
             label = f"SPH, {walls} walls ({results[walls]['particles']} particles)"
@@ -97,10 +91,7 @@ def dam_break(args, out):
         ax[1].set_xlabel("tau = t sqrt(g/a)")
         ax[1].set_ylabel("column height H = y/(2a)")
         ax[1].legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "dam_break_vs_experiment.png"), dpi=120)
-    except ImportError:
-        print("matplotlib not installed: no chart (apt-get install python3-matplotlib)")
+        save_chart(fig, os.path.join(out, "dam_break_vs_experiment.png"))
     return results
 
 
@@ -109,8 +100,7 @@ def water_jet(args, out):
     t_end = 1.2 if args.quick else 1.5
     d = os.path.join(out, "water_jet")
     m, summary, wall = run(args, "water jet", "water_jet.json", t_end, d, sets, frames_every=t_end, metrics_every=0.01)
-    landed = m["time"] > 1.0  # the first particles land after about 0.85 s
-    rng = float(np.median(m["front_x"][landed]))
+    rng = jet_range(m["time"], m["front_x"])
     # Trajectory and radius of the steady jet (last frame), in slabs 0.1 m thick cut square to the jet: the
     # jet is inclined (at x = 3.8 m by 59 degrees), and a vertical slice through it would read the radius
     # stretched by 1 / cos(angle). Each slab starts square to the ballistic direction at x0 and is recentred
@@ -144,10 +134,8 @@ def water_jet(args, out):
         w = csv.DictWriter(f, fieldnames=["x", "time_of_flight", "centre_y", "ballistic_y", "radius", "radius_continuity"])
         w.writeheader()
         w.writerows(slices)
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+    plt = pyplot()
+    if plt:
         fig, ax = plt.subplots(1, 2, figsize=(9, 3.6))
         xs = np.linspace(0, 4.1, 100)
         ax[0].plot(xs, y0 - G * xs ** 2 / (2 * v0 ** 2), "k--", label="ballistic, 4.76 m/s from 3.5 m")
@@ -167,12 +155,9 @@ def water_jet(args, out):
         ax[1].set_xlabel("time of flight x / 4.76 m/s [s]")
         ax[1].set_ylabel("jet radius [m]")
         ax[1].legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "water_jet.png"), dpi=120)
-    except ImportError:
-        pass
+        save_chart(fig, os.path.join(out, "water_jet.png"))
     return {"particles": int(summary["particles"]), "wall_seconds": wall, "range_m": rng,
-            "error_vs_axim_3.97": (rng - 3.97) / 3.97, "error_vs_ballistic_4.02": (rng - 4.02) / 4.02,
+            "error_vs_axim_3.97": (rng - AXIM_RANGE) / AXIM_RANGE, "error_vs_ballistic_4.02": (rng - 4.02) / 4.02,
             "centreline_rms_vs_ballistic_m": rms,
             "radius_first_slice_m": slices[0]["radius"] if slices else None,
             "radius_last_slice_m": slices[-1]["radius"] if slices else None,
