@@ -40,19 +40,9 @@ SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const
   // Mirror walls: the ghosts of the neighbours, the particle's own included (mirror_walls.h). A second
   // pass, so the loop above stays as lean as without walls.
   const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
-  if (walls.count > 0)
-    for_each_candidate(grid, xa, [&](int32_t b) {
-      const Vec3 xb = p.pos[b];
-      if (length2(xa - xb) >= k.h2) return;  // then no ghost of b is within h either
-      const float mb = c.fluids[p.fluid[b]].mass;
-      for (int32_t image = 1; image < image_count(walls); ++image) {
-        Vec3 xg = xb, vg = p.vel_force[b];
-        mirror_image(walls, image, xg, vg);
-        const Vec3 xag = xa - xg;
-        const float r2 = length2(xag);
-        if (r2 < k.h2) density_pair(c, summation, mb, xag, r2, va - vg, rho, rho_near, drho);
-      }
-    });
+  for_each_ghost(c, grid, p, walls, xa, [&](int32_t b, Vec3 xg, Vec3 vg, float r2) {
+    density_pair(c, summation, c.fluids[p.fluid[b]].mass, xa - xg, r2, va - vg, rho, rho_near, drho);
+  });
   p.density[a] = summation ? rho : p.density[a] + dt * drho;
   p.near_density[a] = rho_near;
 }

@@ -103,22 +103,13 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
   // Mirror walls: the ghosts of the neighbours, the particle's own included, add pressure, near pressure and
   // viscosity (mirror_walls.h). A second pass, so the loop above stays as lean as without walls.
   const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
-  if (walls.count > 0)
-    for_each_candidate(grid, xa, [&](int32_t b) {
-      const Vec3 xb = p.pos[b];
-      if (length2(xa - xb) >= k.h2) return;  // then no ghost of b is within h either
-      const float rhob = p.density[b];
-      PairSide side_b{&c.fluids[p.fluid[b]], rhob, 1.0f / rhob, 0.0f, p.near_pressure[b]};
-      for (int32_t image = 1; image < image_count(walls); ++image) {
-        Vec3 xg = xb, vg = p.vel_force[b];
-        mirror_image(walls, image, xg, vg);
-        const Vec3 xag = xa - xg;
-        const float r2 = length2(xag);
-        if (r2 >= k.h2 || r2 <= 0.0f) continue;
-        side_b.pressure = ghost_pressure(c, p.pressure[b], rhob, xb, xg);
-        pressure_viscosity_pair(c, side_a, side_b, xag, r2, va - vg, acc);
-      }
-    });
+  for_each_ghost(c, grid, p, walls, xa, [&](int32_t b, Vec3 xg, Vec3 vg, float r2) {
+    if (r2 <= 0.0f) return;  // a ghost on the particle itself: no direction to push along
+    const float rhob = p.density[b];
+    const PairSide ghost{&c.fluids[p.fluid[b]], rhob, 1.0f / rhob, ghost_pressure(c, p.pressure[b], rhob, p.pos[b], xg),
+                         p.near_pressure[b]};
+    pressure_viscosity_pair(c, side_a, ghost, xa - xg, r2, va - vg, acc);
+  });
   acc += c.gravity;  // external forces, thesis eq. 2.25
   if (c.user_force.strength != 0.0f) {
     const Vec3 to_point = c.user_force.point - xa;

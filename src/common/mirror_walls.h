@@ -16,7 +16,9 @@
 // their tangent plane nearest the particle; obstacles have no ghosts.
 #pragma once
 
+#include "grid.h"
 #include "params.h"
+#include "particle_view.h"
 
 namespace sph {
 
@@ -77,6 +79,25 @@ SPH_HD inline void mirror_image(const NearWalls& w, int32_t image, Vec3& x, Vec3
     const float vn = dot(v, n);
     v = (2.0f * w.slip[i] - 1.0f) * (v - vn * n) - vn * n;
   }
+}
+
+// Calls f(b, x_ghost, v_ghost, r2) for every ghost within h of the particle at xa: each neighbour b's
+// images 1.. across `walls`, r2 = |xa - x_ghost|^2 < h^2. Only neighbours within h can have one.
+template <class F>
+SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                  const NearWalls& walls, Vec3 xa, F&& f) {
+  if (walls.count == 0) return;
+  const float h2 = c.kernel.h2;
+  for_each_candidate(grid, xa, [&](int32_t b) {
+    const Vec3 xb = p.pos[b];
+    if (length2(xa - xb) >= h2) return;
+    for (int32_t image = 1; image < image_count(walls); ++image) {
+      Vec3 xg = xb, vg = p.vel_force[b];
+      mirror_image(walls, image, xg, vg);
+      const float r2 = length2(xa - xg);
+      if (r2 < h2) f(b, xg, vg, r2);
+    }
+  });
 }
 
 // Pressure of the ghost of b at x_ghost: hydrostatic extrapolation [Adami et al. 2012, eq. 27].
