@@ -36,31 +36,17 @@ struct SceneText {
 sph::Scene parse(const SceneText& t, const std::vector<std::string>& overrides = {}) {
   return sph::parse_scene(t.str(), "test.json", overrides);
 }
-sph::Scene parse_with_extra(const std::string& extra) {
+// The base scene with one part replaced.
+sph::Scene parse_with(std::string SceneText::*part, const std::string& text) {
   SceneText t;
-  t.extra = extra + ", ";
+  t.*part = text;
   return parse(t);
 }
-sph::Scene parse_with_boundary(const std::string& boundary) {
-  SceneText t;
-  t.boundaries = "[" + boundary + "]";
-  return parse(t);
-}
-sph::Scene parse_with_emitter(const std::string& emitter) {
-  SceneText t;
-  t.emitters = "[" + emitter + "]";
-  return parse(t);
-}
-sph::Scene parse_with_fluid(const std::string& fluid) {
-  SceneText t;
-  t.fluids = "[" + fluid + "]";
-  return parse(t);
-}
-sph::Scene parse_with_resolution(const std::string& resolution) {
-  SceneText t;
-  t.resolution = resolution;
-  return parse(t);
-}
+sph::Scene parse_with_extra(const std::string& extra) { return parse_with(&SceneText::extra, extra + ", "); }
+sph::Scene parse_with_boundary(const std::string& b) { return parse_with(&SceneText::boundaries, "[" + b + "]"); }
+sph::Scene parse_with_emitter(const std::string& e) { return parse_with(&SceneText::emitters, "[" + e + "]"); }
+sph::Scene parse_with_fluid(const std::string& f) { return parse_with(&SceneText::fluids, "[" + f + "]"); }
+sph::Scene parse_with_resolution(const std::string& r) { return parse_with(&SceneText::resolution, r); }
 
 std::string scenes_dir() { return std::string(SPH_SOURCE_DIR) + "/scenes"; }
 std::string data_dir() { return std::string(SPH_SOURCE_DIR) + "/tests/data"; }
