@@ -9,11 +9,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "../common/frame_reader.h"
 #include "../common/frame_writer.h"
 #include "../common/metrics.h"
 #include "../common/simulation.h"
@@ -34,6 +36,7 @@ struct Options {
   double metrics_every = 0.0;
   std::vector<std::string> sets;
   bool quiet = false;
+  std::string restart;  // frame to continue from
 };
 
 const char* limit_name(StepLimit l) {
@@ -53,6 +56,20 @@ void write_metrics_row(std::ofstream& csv, const Simulation& sim, const Metrics&
   csv << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ','
       << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ',' << m.front_x << ',' << m.top_y
       << ',' << m.height_at_x0 << ',' << m.particles << ',' << wall_ms << '\n';
+}
+
+// --restart: the frame to continue from (nullptr without the option), read and checked before the
+// simulation is set up.
+std::unique_ptr<Frame> restart_frame(const Options& o, const Scene& scene) {
+  if (o.restart.empty()) return nullptr;
+  return std::make_unique<Frame>(read_ply_frame(o.restart, scene.max_particles));
+}
+
+// Time of the next frame after frame `index`, by the same repeated sum as an uninterrupted run.
+double frame_time_after(int index, double frames_every) {
+  double t = frames_every;
+  for (int i = 0; i < index; ++i) t += frames_every;
+  return t;
 }
 
 double median(std::vector<double> v) {
@@ -78,7 +95,8 @@ int run(const Options& o) {
   csv << "time,dt,step,kinetic_energy,density_error_mean,density_error_max,v_max,front_x,top_y,height_at_x0,particles,"
          "wall_ms\n";
 
-  Simulation sim(scene, factory, run_time);
+  const std::unique_ptr<Frame> restart = restart_frame(o, scene);
+  Simulation sim(scene, factory, run_time, restart.get());
   const Setup& st = sim.setup();
   std::cout << "scene: " << scene.name << " (" << o.scene << ")\n"
             << "backend: " << sim.backend().name() << "\n"
@@ -93,20 +111,25 @@ int run(const Options& o) {
                           ", final max speed " + std::to_string(sim.relaxation().final_speed) + " m/s (threshold " +
                           std::to_string(sim.relaxation().threshold) + ")\n"
                     : std::string())
+            << (restart ? "restart: " + o.restart + " (frame " + std::to_string(restart->info.frame_index) + ", step " +
+                              std::to_string(sim.steps()) + ", t = " + std::to_string(sim.time()) + " s)\n"
+                        : std::string())
             << "run: " << (by_steps ? std::to_string(o.steps) + " steps" : std::to_string(run_time) + " s simulated")
             << ", output: " << o.out << "\n";
   std::cout.flush();
 
-  int frame = 0;
+  int frame = restart ? restart->info.frame_index + 1 : 0;  // a continued run numbers on
+  const int first_frame = frame;
   auto write_frame = [&] {
     char name[64];
-    std::snprintf(name, sizeof name, "frame_%05d.ply", frame++);
-    write_ply_frame((fs::path(o.out) / name).string(), sim.particles(), sim.time());
+    std::snprintf(name, sizeof name, "frame_%05d.ply", frame);
+    write_ply_frame((fs::path(o.out) / name).string(), sim.particles(), sim.frame_info(frame));
+    ++frame;
   };
   double next_frame = 0.0, next_metrics = 0.0;
   if (frames_every > 0.0) {
-    write_frame();
-    next_frame = frames_every;
+    if (!restart) write_frame();  // a continued run starts from a frame that already exists
+    next_frame = frame_time_after(restart ? restart->info.frame_index : 0, frames_every);
   }
   write_metrics_row(csv, sim, measure(st.constants, sim.particles()), 0.0);
   next_metrics = o.metrics_every;
@@ -169,7 +192,7 @@ int run(const Options& o) {
       std::cout << ' ' << phase_name(Phase(p)) << '=' << 1e3 * pt.seconds[std::size_t(p)] / double(pt.steps);
     std::cout << "\n";
   }
-  std::cout << "metrics: " << csv_path << (frame > 0 ? ", frames: " + std::to_string(frame) : std::string()) << "\n";
+  std::cout << "metrics: " << csv_path << (frame > first_frame ? ", frames: " + std::to_string(frame - first_frame) : std::string()) << "\n";
   return status;
 }
 
@@ -199,6 +222,10 @@ int main(int argc, char** argv) {
                  "override a scene value, key=value with a dotted path, repeatable; for example\n"
                  "--set fluids.0.viscosity=0.01 --set resolution.particles_across=40 --set integrator=leapfrog");
   app.add_flag("--quiet,-q", o.quiet, "no progress line");
+  app.add_option("--restart", o.restart,
+                 "continue the run from a frame OUT/frame_NNNNN.ply of this scene: the state, time, step and jets\n"
+                 "come from the frame, bit for bit; --time and --steps count from the original start; frames\n"
+                 "are numbered on from NNNNN + 1");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

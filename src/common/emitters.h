@@ -31,6 +31,10 @@ class JetEmitter {
   const EmitterSpec& spec() const { return spec_; }
   // Most particles this jet keeps alive at once (its lifetime plus the inlet), or 0 when unbounded.
   double steady_count(double run_time) const;
+  // Distance moved since the last layer was born [m]: the emission accumulator a frame stores so a
+  // continued run emits its layers at the same steps and places.
+  double travelled() const { return travelled_; }
+  void set_travelled(double distance) { travelled_ = distance; }
 
  private:
   void layer(double offset, std::vector<Spawn>& out, int32_t& next_id) const;

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "frame_reader.h"
+
 namespace sph {
 
 double smoothing_length(double spacing, double neighbours) {
@@ -156,8 +158,9 @@ Setup create_setup(const Scene& scene, double run_time) {
 
   // Count first, so an absurd resolution is refused before anything large is allocated.
   double instant = 0.0;
+  const bool from_frame = !scene.initial_state.empty();  // the frame replaces the instant emitters' fill
   for (const EmitterSpec& e : scene.emitters) {
-    if (e.type == EmitterType::Jet) continue;
+    if (e.type == EmitterType::Jet || from_frame) continue;
     if (e.type == EmitterType::Box) {
       double n = 1.0;
       for (int i = 0; i < 3; ++i) n *= std::max(1.0, std::round((e.max[i] - e.min[i]) / s.spacing));
@@ -179,6 +182,7 @@ Setup create_setup(const Scene& scene, double run_time) {
       fc.lifetime = float(e.lifetime);
       continue;
     }
+    if (from_frame) continue;
     const std::vector<Vec3d> pts = fill_emitter(e, s.spacing);
     const float rho0 = float(scene.fluids[std::size_t(e.fluid)].rest_density);
     for (const Vec3d& p : pts) {
@@ -186,6 +190,7 @@ Setup create_setup(const Scene& scene, double run_time) {
       s.particles.append(sp);
     }
   }
+  if (from_frame) s.particles = initial_state_particles(scene, s.spacing, s.next_id);
   for (JetEmitter& j : s.jets)
     for (const Spawn& sp : j.prefill(s.next_id)) s.particles.append(sp);
 

@@ -118,6 +118,9 @@ struct Scene {
   double max_particles = 2e7;
   double blowup_speed = 0.0;     // 0 = 10 x the largest speed of sound
   RelaxationSpec relaxation;
+  // "initial_state": a frame (frame_writer.h) whose particles replace the instant emitters' fill; jets
+  // still run. Stored resolved against the scene file's folder; empty = none.
+  std::string initial_state;
 };
 
 // Reads, validates and fills defaults. overrides are "dotted.path=value" strings applied to the JSON

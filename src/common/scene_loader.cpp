@@ -1,6 +1,7 @@
 // Scene files: JSON with string names for every choice, defaults in code, strict validation. Unknown keys,
 // unknown names, wrong types, non-finite or out-of-range numbers are errors that name the file and the key.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -14,6 +15,7 @@ namespace sph {
 namespace {
 
 using json = nlohmann::json;
+namespace fs = std::filesystem;
 
 [[noreturn]] void fail(const std::string& source, const std::string& key, const std::string& what) {
   throw SceneError(source + ": " + (key.empty() ? std::string() : key + ": ") + what);
@@ -348,7 +350,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   s.source = source;
   ObjectReader r(root, source, "");
   r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "integrator",
-           "time_step", "gravity", "domain", "run", "limits", "relaxation"});
+           "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -362,9 +364,17 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
     s.fluids.push_back(read_fluid(fr));
   }
 
-  if (!r.has("emitters")) fail(source, "emitters", "is required: a list of emitters (box, sphere, jet)");
-  const json& em = r.raw("emitters");
-  if (!em.is_array() || em.empty()) fail(source, "emitters", "expected a non-empty list of emitter objects");
+  if (r.has("initial_state")) {  // a path relative to the scene file; frame_reader.h reads and checks it
+    const fs::path p = r.string("initial_state", "");
+    if (p.empty()) fail(source, "initial_state", "expected the path of a frame (.ply) written by sph_run");
+    s.initial_state = (p.is_absolute() ? p : fs::path(source).parent_path() / p).string();
+  }
+  // With an initial state the emitters may be left out: the frame holds the fluid.
+  if (!r.has("emitters") && s.initial_state.empty())
+    fail(source, "emitters", "is required: a list of emitters (box, sphere, jet), or an initial_state");
+  const json& em = r.has("emitters") ? r.raw("emitters") : json::array();
+  if (!em.is_array() || (em.empty() && s.initial_state.empty()))
+    fail(source, "emitters", "expected a non-empty list of emitter objects");
   for (std::size_t i = 0; i < em.size(); ++i) {
     ObjectReader er(em[i], source, "emitters." + std::to_string(i));
     s.emitters.push_back(read_emitter(er, s.fluids));
@@ -394,6 +404,8 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
       if (n < 2 || n > 100000)
         fail(source, "resolution.particles_across", "value " + std::to_string(n) + " is out of range: allowed [2, 100000]");
       s.particles_across = int(n);
+      if (s.emitters.empty())
+        fail(source, "resolution.particles_across", "counts across the first emitter, and there is none; give resolution.spacing");
     } else {
       s.spacing = rr.number("spacing", 0.0, 0.0, kHuge, true);
     }

@@ -22,11 +22,15 @@ const char* phase_name(Phase p) {
   return "?";
 }
 
-Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double run_time)
+Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double run_time, const Frame* restart)
     : scene_(scene), setup_(create_setup(scene, run_time)), backend_(factory(setup_.constants)) {
-  if (scene_.relaxation.enabled) relax(factory);
-  backend_->upload(setup_.particles);
-  backend_->initialise_forces();
+  if (restart) {
+    continue_from(*restart);
+  } else {
+    if (scene_.relaxation.enabled) relax(factory);
+    backend_->upload(setup_.particles);
+    backend_->initialise_forces();
+  }
   diag_ = backend_->diagnose();
 }
 

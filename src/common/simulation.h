@@ -7,6 +7,7 @@
 #include <string>
 
 #include "backend.h"
+#include "frame_reader.h"
 #include "guided_creation.h"
 #include "scene.h"
 #include "time_step.h"
@@ -30,7 +31,10 @@ struct RelaxationReport {
 
 class Simulation {
  public:
-  Simulation(const Scene& scene, const BackendFactory& factory, double run_time);
+  // restart: a frame of an earlier run of this scene (frame_reader.h) to continue from, bit for bit: its
+  // particles (with their accelerations), time, step, next id and jet accumulators replace the start-up
+  // state; no relaxation, no initialise_forces. Throws SceneError when the frame does not fit the scene.
+  Simulation(const Scene& scene, const BackendFactory& factory, double run_time, const Frame* restart = nullptr);
 
   // One time step; throws BlowUp when the state has become unphysical.
   void advance();
@@ -51,6 +55,9 @@ class Simulation {
   void set_constants(const SimConstants& constants);
   void switch_backend(const BackendFactory& factory);
 
+  // The header of a frame of the current state (write_ply_frame), numbered frame_index.
+  FrameInfo frame_info(int frame_index) const;
+
  private:
   Scene scene_;
   Setup setup_;
@@ -59,6 +66,7 @@ class Simulation {
   RelaxationReport relaxation_;
 
   void relax(const BackendFactory& factory);
+  void continue_from(const Frame& frame);  // simulation_restart.cpp
   double time_ = 0.0;
   long steps_ = 0;
   double last_dt_ = 0.0;
