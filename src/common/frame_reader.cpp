@@ -134,6 +134,9 @@ void parse_header(const std::vector<std::string>& lines, const std::string& path
       refuse(path, "unexpected \"" + line + "\": a frame has one element, vertex");
     }
   }
+  if (prop != std::size(kProperties))
+    refuse(path, "only " + std::to_string(prop) + " of the " + std::to_string(std::size(kProperties)) +
+                     " properties x y z vx vy vz density pressure fluid id ax ay az age (frames of older versions lack ax ay az age and cannot be continued)");
   const std::pair<bool, const char*> required[] = {
       {have_time, "comment sph frame, time T s"}, {have_scene, "comment scene NAME"}, {have_step, "comment step N"},
       {have_frame, "comment frame I"},            {have_next, "comment next_id K"},   {have_spacing, "comment spacing D"},
@@ -143,9 +146,6 @@ void parse_header(const std::vector<std::string>& lines, const std::string& path
   if (jets_seen != info.jet_travelled.size())
     refuse(path, "the header announces " + std::to_string(info.jet_travelled.size()) + " jets but has " +
                      std::to_string(jets_seen) + " \"comment jet j travelled X\" lines");
-  if (prop != std::size(kProperties))
-    refuse(path, "only " + std::to_string(prop) + " of the " + std::to_string(std::size(kProperties)) +
-                     " properties x y z vx vy vz density pressure fluid id ax ay az age (an older frame?)");
 }
 
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }

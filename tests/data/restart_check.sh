@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# sph_run --restart end to end: a small dam break writes frames; continuing it from frame 5 (on each back end
+# given) must write frames 6, 7, ... with the very same bytes as the uninterrupted run; a truncated or
+# missing frame is refused with exit status 1 and a message naming the file.
+#
+#   restart_check.sh SPH_RUN SCENES_DIR OUT_DIR BACKEND...
+set -u
+run=$1 scenes=$2 out=$3
+shift 3
+fail() { echo "FAIL: $*" >&2; exit 1; }
+rm -rf "$out" && mkdir -p "$out" || fail "cannot create $out"
+common=("$scenes/dam_break.json" --set resolution.particles_across=8 --steps 60 --frames-every 0.001 --quiet)
+
+"$run" "${common[@]}" --out "$out/whole" > /dev/null || fail "the uninterrupted run failed"
+[ -f "$out/whole/frame_00016.ply" ] || fail "the uninterrupted run wrote no frame 16"
+ls "$out/whole" | grep -q '\.tmp$' && fail "temporary frame files were left behind"
+
+for backend in "$@"; do
+  "$run" "${common[@]}" --backend "$backend" --restart "$out/whole/frame_00005.ply" --out "$out/$backend" > "$out/$backend.txt" ||
+    fail "the run continued on $backend failed"
+  grep -q "restart: .*frame 5, step" "$out/$backend.txt" || fail "the summary does not say where the run continued"
+  [ -e "$out/$backend/frame_00005.ply" ] && fail "the continued run rewrote the frame it started from"
+  [ -f "$out/$backend/frame_00006.ply" ] || fail "the continued run does not number its frames on from 6"
+  for f in "$out/$backend"/frame_*.ply; do
+    cmp -s "$f" "$out/whole/$(basename "$f")" || fail "$backend: $(basename "$f") differs from the uninterrupted run"
+  done
+  [ "$(ls "$out/$backend"/frame_*.ply | wc -l)" -eq 11 ] || fail "$backend: expected frames 6 to 16"
+done
+
+head -c 3000 "$out/whole/frame_00005.ply" > "$out/truncated.ply"
+for bad in "$out/truncated.ply" "$out/no_such_frame.ply"; do
+  "$run" "${common[@]}" --restart "$bad" --out "$out/bad" > /dev/null 2> "$out/bad.txt"
+  status=$?
+  [ "$status" -eq 1 ] || fail "--restart $bad exited with $status, expected 1"
+  grep -qF "$bad" "$out/bad.txt" || fail "the refusal of $bad does not name it: $(cat "$out/bad.txt")"
+done
+echo "restart: frames 6 to 16 identical on: $*"
