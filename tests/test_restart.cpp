@@ -233,6 +233,30 @@ TEST_CASE("a scene can start from a frame (initial_state)", "[restart]") {
   }
 }
 
+TEST_CASE("a scene that starts from a frame needs no emitter, but then a spacing", "[restart]") {
+  const Scratch scratch("no_emitters");
+  const sph::Scene dam = scene_file("dam_break.json", {"resolution.particles_across=8"});
+  sph::Simulation source(dam, cpu_factory(), 1.0);
+  sph::write_ply_frame((scratch.dir / "start.ply").string(), source.particles(), source.frame_info(0));
+  const std::string scene_path = (scratch.dir / "scene.json").string();
+  auto scene_with = [&](const std::string& resolution) {
+    return sph::parse_scene(R"({ "name": "from_frame", "fluids": [ { "speed_of_sound": 20 } ],
+      "initial_state": "start.ply", "resolution": )" + resolution + R"(,
+      "boundaries": [ { "type": "box", "min": [0, 0, 0], "max": [0.4572, 0.2286, 0.05715] } ] })",
+                            scene_path);
+  };
+  sph::Simulation sim(scene_with(R"({ "spacing": 0.00714375 })"), cpu_factory(), 1.0);
+  CHECK(sim.particles().size() == source.particles().size());
+  try {
+    scene_with(R"({ "particles_across": 8 })");
+    FAIL("particles_across without an emitter was accepted");
+  } catch (const sph::SceneError& e) {
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("resolution.particles_across") != std::string::npos);
+    CHECK(std::string(e.what()).find("resolution.spacing") != std::string::npos);
+  }
+}
+
 namespace {
 
 // The refusal message for a frame file, or "" when it was accepted.
