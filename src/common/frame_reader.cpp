@@ -96,7 +96,7 @@ void parse_header(const std::vector<std::string>& lines, const std::string& path
       info.step = parse_long(path, "comment step", v, 0, 1L << 62);
       have_step = true;
     } else if (after("comment frame ", v)) {
-      info.frame_index = int(parse_long(path, "comment frame", v, 0, 2147483646L));
+      info.frame_index = int(parse_long(path, "comment frame", v, 0, 99999999L));  // frame_%05d grows to 8 digits
       have_frame = true;
     } else if (after("comment next_id ", v)) {
       info.next_id = int32_t(parse_long(path, "comment next_id", v, 0, 2147483647L));
