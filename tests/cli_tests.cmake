@@ -133,6 +133,9 @@ sph_cli_test(metrics_disk_full
   --setup "mkdir -p ${SPH_CLI_OUT}/metrics_disk_full && ln -s /dev/full ${SPH_CLI_OUT}/metrics_disk_full/metrics.csv"
   --stderr "metrics_disk_full/metrics.csv" --stderr "No space left on device"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 3 --quiet --out ${SPH_CLI_OUT}/metrics_disk_full)
+sph_cli_test(out_not_a_directory
+  --exit 4 --stderr "cannot create the output directory" --stderr "/dev/null/out"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 3 --quiet --out /dev/null/out)
 
 # --- a run stopped by a signal: after the current step, metrics complete, summary printed, 128 + N ------
 # The perf cube asked to run 1000 simulated seconds is stopped after 2 s of wall time.
@@ -151,6 +154,14 @@ foreach(sig TERM INT)
     -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time 1000 --quiet --out ${SPH_CLI_OUT}/stopped_${sig})
 endforeach()
 unset(_status)
+# Killed outright (no handler can run): the rows written more than a second before the kill are on disk.
+# One row per 50 steps of the perf cube for 3 s is less than the stdio buffer holds, so without the
+# once-per-second flush the file would still hold only its header.
+sph_cli_test(metrics_flushed_before_kill
+  --exit 137 --clean ${SPH_CLI_OUT}/killed --signal KILL 3
+  --min-lines ${SPH_CLI_OUT}/killed/metrics.csv 3
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time 1000 --metrics-every 0.05 --quiet
+     --out ${SPH_CLI_OUT}/killed)
 
 # --- a run that blows up: exit 3, a message naming step and particle with advice, metrics kept ---------
 # dam_break with a fixed 50 ms step (about 300 times the sound-speed CFL limit) explodes in a few steps.
