@@ -1,5 +1,6 @@
 # sph_run command-line tests: bad input must fail with a clear message and the documented exit status
-# (1 bad input, 3 unstable simulation); a short good run must print its summary and write metrics.csv.
+# (1 bad input, 3 unstable simulation, 4 output not written, 128 + N stopped by signal N); a short good run
+# must print its summary and write metrics.csv; a stopped run must leave a complete metrics.csv.
 # Each test runs tests/data/run_check.sh, which checks the exit status, the words on stdout / stderr and
 # the files written; a test that only expected failure (WILL_FAIL) would also pass on a crash.
 set(SPH_CLI_CHECK ${CMAKE_CURRENT_SOURCE_DIR}/data/run_check.sh)
@@ -36,6 +37,36 @@ sph_cli_test(bad_set
 sph_cli_test(bad_set_path
   --exit 1 --stderr "fluids.7.viscosity" --stderr "not an index"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set fluids.7.viscosity=1 --out ${SPH_CLI_OUT}/bad_set_path)
+# Paths that are not scene files are refused at once, never read forever (/dev/zero) or waited on (FIFO).
+sph_cli_test(scene_dev_zero
+  --exit 1 --max-seconds 5 --stderr "/dev/zero" --stderr "not a regular file"
+  -- ${SPH_RUN} /dev/zero --out ${SPH_CLI_OUT}/scene_dev_zero)
+sph_cli_test(scene_directory
+  --exit 1 --max-seconds 5 --stderr "is a directory"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES} --out ${SPH_CLI_OUT}/scene_directory)
+sph_cli_test(scene_fifo
+  --exit 1 --max-seconds 5 --clean ${SPH_CLI_OUT}/scene_fifo
+  --setup "mkdir -p ${SPH_CLI_OUT}/scene_fifo && mkfifo ${SPH_CLI_OUT}/scene_fifo/scene.json"
+  --stderr "scene.json" --stderr "not a regular file"
+  -- ${SPH_RUN} ${SPH_CLI_OUT}/scene_fifo/scene.json --out ${SPH_CLI_OUT}/scene_fifo/out)
+sph_cli_test(scene_too_large
+  --exit 1 --max-seconds 5 --clean ${SPH_CLI_OUT}/scene_too_large
+  --setup "mkdir -p ${SPH_CLI_OUT}/scene_too_large && truncate -s 17M ${SPH_CLI_OUT}/scene_too_large/big.json"
+  --stderr "big.json" --stderr "17825792 bytes" --stderr "at most 16 MiB"
+  -- ${SPH_RUN} ${SPH_CLI_OUT}/scene_too_large/big.json --out ${SPH_CLI_OUT}/scene_too_large/out)
+# A value that reads as a number but is not a finite double is named as such, not taken as a string.
+sph_cli_test(set_overflowing_number
+  --exit 1 --stderr "fluids.0.viscosity=1e400" --stderr "not a finite number"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --set fluids.0.viscosity=1e400 --out ${SPH_CLI_OUT}/set_1e400)
+sph_cli_test(set_nan
+  --exit 1 --stderr "fluids.0.viscosity=nan" --stderr "not a finite number"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --set fluids.0.viscosity=nan --out ${SPH_CLI_OUT}/set_nan)
+# A 0.1 mm cube at 10 um spacing: the kernel sum overflows single precision, so the density right after
+# set-up is infinite. The run is refused before its first step, naming the spacing.
+sph_cli_test(initial_state_not_finite
+  --exit 1 --stderr "thesis_perf_cube.json" --stderr "spacing"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --set "emitters.0.max=[1e-4,1e-4,1e-4]"
+     --set resolution.particles_across=10 --steps 3 --out ${SPH_CLI_OUT}/initial_state_not_finite)
 sph_cli_test(too_many_particles
   --exit 1 --max-seconds 10 --stderr "limits.max_particles"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --set resolution.particles_across=5000
@@ -53,18 +84,84 @@ add_test(NAME cli_backend_cuda_without_gpu
                  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --backend cuda --out ${SPH_CLI_OUT}/backend_cuda
          WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(cli_backend_cuda_without_gpu PROPERTIES TIMEOUT 120 LABELS cli SKIP_RETURN_CODE 77)
+# Numeric options: finite, in range, no silent overflow; the message names the option and the range.
 sph_cli_test(steps_zero
-  --exit 1 --stderr "--steps must be positive"
+  --exit 1 --stderr "--steps: 0 is out of range" --stderr "[1, 1000000000000]"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 0 --out ${SPH_CLI_OUT}/steps_zero)
+sph_cli_test(steps_overflow
+  --exit 1 --stderr "--steps: 99999999999999999999 is out of range"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 99999999999999999999 --out ${SPH_CLI_OUT}/steps_overflow)
+sph_cli_test(steps_fraction
+  --exit 1 --stderr "--steps: \"2.5\" is not a whole number"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 2.5 --out ${SPH_CLI_OUT}/steps_fraction)
 sph_cli_test(time_negative
-  --exit 1 --stderr "--time must be positive"
+  --exit 1 --stderr "--time: -1 is out of range" --stderr "allowed (0, 1e+07"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time -1 --out ${SPH_CLI_OUT}/time_negative)
+sph_cli_test(time_nan
+  --exit 1 --stderr "--time: \"nan\" is not a finite number"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time nan --out ${SPH_CLI_OUT}/time_nan)
+sph_cli_test(time_inf
+  --exit 1 --stderr "--time: \"inf\" is not a finite number"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time inf --out ${SPH_CLI_OUT}/time_inf)
+sph_cli_test(time_huge
+  --exit 1 --max-seconds 10 --stderr "--time: 1e30 is out of range" --stderr "allowed (0, 1e+07"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time 1e30 --out ${SPH_CLI_OUT}/time_huge)
+sph_cli_test(frames_every_nan
+  --exit 1 --stderr "--frames-every: \"nan\" is not a finite number" --stderr "[0, 1e+07] seconds"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --frames-every nan --out ${SPH_CLI_OUT}/frames_every_nan)
+sph_cli_test(metrics_every_negative
+  --exit 1 --stderr "--metrics-every: -1 is out of range" --stderr "[0, 1e+07] seconds"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --metrics-every -1 --out ${SPH_CLI_OUT}/metrics_every_negative)
+# Parse errors exit 1 as documented (not CLI11's own 104 to 109); --help exits 0 and documents the statuses.
 sph_cli_test(unknown_option
-  --exit nonzero --stderr "--bogus"
+  --exit 1 --stderr "--bogus"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --bogus)
 sph_cli_test(no_scene_argument
-  --exit nonzero --stderr "scene"
+  --exit 1 --stderr "scene"
   -- ${SPH_RUN} --steps 3)
+sph_cli_test(time_and_steps
+  --exit 1 --stderr "excludes"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time 1 --steps 3)
+sph_cli_test(help
+  --exit 0 --stdout "4 an output could not be written" --stdout "143 stopped by SIGTERM"
+  -- ${SPH_RUN} --help)
+
+# --- output that cannot be written: exit 4, the message names the file and the reason ------------------
+# metrics.csv is a link to /dev/full, where every write fails with ENOSPC.
+sph_cli_test(metrics_disk_full
+  --exit 4 --max-seconds 10 --clean ${SPH_CLI_OUT}/metrics_disk_full
+  --setup "mkdir -p ${SPH_CLI_OUT}/metrics_disk_full && ln -s /dev/full ${SPH_CLI_OUT}/metrics_disk_full/metrics.csv"
+  --stderr "metrics_disk_full/metrics.csv" --stderr "No space left on device"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 3 --quiet --out ${SPH_CLI_OUT}/metrics_disk_full)
+sph_cli_test(out_not_a_directory
+  --exit 4 --stderr "cannot create the output directory" --stderr "/dev/null/out"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 3 --quiet --out /dev/null/out)
+
+# --- a run stopped by a signal: after the current step, metrics complete, summary printed, 128 + N ------
+# The perf cube asked to run 1000 simulated seconds is stopped after 2 s of wall time.
+foreach(sig TERM INT)
+  if(sig STREQUAL "TERM")
+    set(_status 143)
+  else()
+    set(_status 130)
+  endif()
+  sph_cli_test(stopped_by_sig${sig}
+    --exit ${_status} --clean ${SPH_CLI_OUT}/stopped_${sig} --signal ${sig} 2
+    --stdout "interrupted: SIG${sig} at t = " --stdout-prefix "ms_per_step: " --stdout-prefix "ms_per_step_mean: "
+    --stdout-prefix "phase_ms_per_step_mean: " --stdout-prefix "steps: "
+    --min-lines ${SPH_CLI_OUT}/stopped_${sig}/metrics.csv 3
+    --csv-complete ${SPH_CLI_OUT}/stopped_${sig}/metrics.csv
+    -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time 1000 --quiet --out ${SPH_CLI_OUT}/stopped_${sig})
+endforeach()
+unset(_status)
+# Killed outright (no handler can run): the rows written more than a second before the kill are on disk.
+# One row per 50 steps of the perf cube for 3 s is less than the stdio buffer holds, so without the
+# once-per-second flush the file would still hold only its header.
+sph_cli_test(metrics_flushed_before_kill
+  --exit 137 --clean ${SPH_CLI_OUT}/killed --signal KILL 3
+  --min-lines ${SPH_CLI_OUT}/killed/metrics.csv 3
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --time 1000 --metrics-every 0.05 --quiet
+     --out ${SPH_CLI_OUT}/killed)
 
 # --- a run that blows up: exit 3, a message naming step and particle with advice, metrics kept ---------
 # dam_break with a fixed 50 ms step (about 300 times the sound-speed CFL limit) explodes in a few steps.
@@ -86,7 +183,8 @@ endforeach()
 sph_cli_test(perf_cube_3_steps
   --exit 0 --clean ${SPH_CLI_OUT}/perf_cube
   --stdout-line "particles: 4096" --stdout-line "steps: 3" --stdout-prefix "ms_per_step: "
-  ${_columns}
+  --stdout-prefix "ms_per_step_mean: " --stdout-prefix "phase_ms_per_step_mean: "
+  ${_columns} --csv-complete ${_csv}
   --min-lines ${_csv} 5
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --steps 3 --quiet --out ${SPH_CLI_OUT}/perf_cube)
 unset(_csv)

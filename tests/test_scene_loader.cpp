@@ -349,10 +349,16 @@ TEST_CASE("loader: zero, negative, non-finite and absurd sizes are refused with 
                                                "start": 2, "stop": 1 })"),
                         Contains("emitters.0.stop") && Contains("later than start"));
   }
-  SECTION("NaN-like values given through --set are not numbers") {
+  SECTION("NaN-like and overflowing values given through --set are not finite numbers") {
     SceneText t;
-    REQUIRE_THROWS_WITH(parse(t, {"fluids.0.viscosity=NaN"}), Contains("fluids.0.viscosity") && Contains("expected a number"));
-    REQUIRE_THROWS_WITH(parse(t, {"fluids.0.viscosity=inf"}), Contains("fluids.0.viscosity") && Contains("expected a number"));
+    for (const char* v : {"NaN", "inf", "-Infinity", "1e400", "-1e400"})
+      REQUIRE_THROWS_WITH(parse(t, {std::string("fluids.0.viscosity=") + v}),
+                          Contains("fluids.0.viscosity") && Contains(std::string(v) + " is not a finite number"));
+  }
+  SECTION("numbers that JSON does not read are read as numbers through --set") {
+    SceneText t;
+    REQUIRE(parse(t, {"fluids.0.viscosity=.5"}).fluids[0].viscosity == Approx(0.5));
+    REQUIRE(parse(t, {"fluids.0.viscosity=+2"}).fluids[0].viscosity == Approx(2.0));
   }
 }
 

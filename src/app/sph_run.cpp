@@ -1,5 +1,7 @@
 // sph_run: the headless runner. Loads a scene, runs it on a back end, writes metrics.csv and optional PLY
-// frames, shows progress on a terminal, and prints a summary (particles, steps, median ms per step).
+// frames, shows progress on a terminal, and prints a summary (particles, steps, ms per step).
+// Nothing is lost silently: every write is checked (exit 4), SIGINT / SIGTERM stop after the current step
+// with the output flushed (exit 130 / 143), and a non-finite state never ends with exit 0.
 #include <unistd.h>
 
 #include <algorithm>
@@ -7,9 +9,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
+#include <numeric>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,19 +23,30 @@
 #include "../common/metrics.h"
 #include "../common/simulation.h"
 #include "backends.h"
+#include "metrics_file.h"
+#include "option_values.h"
+#include "state_checks.h"
+#include "stop_signals.h"
 
 namespace fs = std::filesystem;
 using namespace sph;
 
 namespace {
 
+// Exit statuses (documented in --help and the README); a stop by signal N exits with 128 + N.
+constexpr int kDone = 0, kBadInput = 1, kUnstable = 3, kOutputFailed = 4;
+
+// Limits of the numeric options: longer runs are taken as mistakes (the scene's run.time has the same bound).
+constexpr double kMaxTime = 1e7;          // simulated seconds
+constexpr long long kMaxSteps = 1000000000000LL;
+
 struct Options {
   std::string scene;
   std::string backend = "cpu";
-  double time = -1.0;
-  long steps = -1;
+  double time = -1.0;      // < 0: the scene's run.time
+  long long steps = -1;    // < 0: run by time
   std::string out = "out";
-  double frames_every = -1.0;
+  double frames_every = -1.0;  // < 0: the scene's run.frames_every
   double metrics_every = 0.0;
   std::vector<std::string> sets;
   bool quiet = false;
@@ -52,10 +66,17 @@ const char* limit_name(StepLimit l) {
   return "?";
 }
 
-void write_metrics_row(std::ofstream& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
-  csv << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ','
+const char* const kMetricsHeader =
+    "time,dt,step,kinetic_energy,density_error_mean,density_error_max,v_max,front_x,top_y,height_at_x0,particles,"
+    "wall_ms";
+
+void write_metrics_row(MetricsFile& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
+  std::ostringstream row;
+  row.precision(9);
+  row << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ','
       << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ',' << m.front_x << ',' << m.top_y
-      << ',' << m.height_at_x0 << ',' << m.particles << ',' << wall_ms << '\n';
+      << ',' << m.height_at_x0 << ',' << m.particles << ',' << wall_ms;
+  csv.write_row(row.str());
 }
 
 // --restart: the frame to continue from (nullptr without the option), read and checked before the
@@ -78,25 +99,12 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-int run(const Options& o) {
-  Scene scene = load_scene(o.scene, o.sets);
-  const double run_time = o.time > 0.0 ? o.time : scene.run_time;
-  const bool by_steps = o.steps > 0;
-  const double frames_every = o.frames_every >= 0.0 ? o.frames_every : scene.frames_every;
-  BackendFactory factory = backend_factory(o.backend);
+double mean(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+}
 
-  std::error_code ec;
-  fs::create_directories(o.out, ec);
-  if (ec) throw std::runtime_error("cannot create output directory " + o.out + ": " + ec.message());
-  const std::string csv_path = (fs::path(o.out) / "metrics.csv").string();
-  std::ofstream csv(csv_path);
-  if (!csv) throw std::runtime_error("cannot write " + csv_path);
-  csv.precision(9);
-  csv << "time,dt,step,kinetic_energy,density_error_mean,density_error_max,v_max,front_x,top_y,height_at_x0,particles,"
-         "wall_ms\n";
-
-  const std::unique_ptr<Frame> restart = restart_frame(o, scene);
-  Simulation sim(scene, factory, run_time, restart.get());
+void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_steps, double run_time,
+                 const Frame* restart) {
   const Setup& st = sim.setup();
   std::cout << "scene: " << scene.name << " (" << o.scene << ")\n"
             << "backend: " << sim.backend().name() << "\n"
@@ -117,68 +125,17 @@ int run(const Options& o) {
             << "run: " << (by_steps ? std::to_string(o.steps) + " steps" : std::to_string(run_time) + " s simulated")
             << ", output: " << o.out << "\n";
   std::cout.flush();
+}
 
-  int frame = restart ? restart->info.frame_index + 1 : 0;  // a continued run numbers on
-  const int first_frame = frame;
-  auto write_frame = [&] {
-    char name[64];
-    std::snprintf(name, sizeof name, "frame_%05d.ply", frame);
-    write_ply_frame((fs::path(o.out) / name).string(), sim.particles(), sim.frame_info(frame));
-    ++frame;
-  };
-  double next_frame = 0.0, next_metrics = 0.0;
-  if (frames_every > 0.0) {
-    if (!restart) write_frame();  // a continued run starts from a frame that already exists
-    next_frame = frame_time_after(restart ? restart->info.frame_index : 0, frames_every);
-  }
-  write_metrics_row(csv, sim, measure(st.constants, sim.particles()), 0.0);
-  next_metrics = o.metrics_every;
-
-  const bool tty = isatty(STDERR_FILENO) && !o.quiet;
-  std::vector<double> step_ms;
-  const auto start = std::chrono::steady_clock::now();
-  auto last_progress = start;
-  int status = 0;
-  while (by_steps ? sim.steps() < o.steps : sim.time() < run_time - 1e-12) {
-    const auto t0 = std::chrono::steady_clock::now();
-    try {
-      sim.advance();
-    } catch (const BlowUp& e) {
-      if (tty) std::cerr << '\n';
-      std::cerr << "error: " << e.what() << "\n";
-      status = 3;
-      break;
-    }
-    const auto t1 = std::chrono::steady_clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-    step_ms.push_back(ms);
-    if (sim.time() >= next_metrics - 1e-12) {
-      write_metrics_row(csv, sim, measure(st.constants, sim.particles()), ms);
-      next_metrics = sim.time() + o.metrics_every;
-    }
-    if (frames_every > 0.0 && sim.time() >= next_frame - 1e-12) {
-      write_frame();
-      next_frame += frames_every;
-    }
-    if (tty && std::chrono::duration<double>(t1 - last_progress).count() > 0.25) {
-      last_progress = t1;
-      const double wall = std::chrono::duration<double>(t1 - start).count();
-      const double frac = by_steps ? double(sim.steps()) / o.steps : sim.time() / run_time;
-      const double eta = frac > 0 ? wall * (1.0 - frac) / frac : 0.0;
-      std::fprintf(stderr, "\r  t = %.4f s  step %ld  dt = %.2e s (%s)  %.1f steps/s  %zu particles  %3.0f%%  ETA %.0f s   ",
-                   sim.time(), sim.steps(), sim.last_dt(), limit_name(sim.last_limit()), sim.steps() / wall,
-                   sim.backend().size(), 100.0 * frac, eta);
-    }
-  }
-  if (tty) std::fprintf(stderr, "\n");
-  csv.flush();
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Metrics m = measure(st.constants, sim.particles());
+// The summary: figures of the whole run. ms_per_step is the median wall time of one step (benchmarks
+// parse it); the means are named as such.
+void print_summary(Simulation& sim, const Metrics& m, const std::vector<double>& step_ms, double wall) {
   const double med = median(step_ms);
   std::cout << "simulated_time: " << sim.time() << "\n"
             << "particles: " << sim.backend().size() << "\n"
             << "steps: " << sim.steps() << "\n"
             << "ms_per_step: " << med << "\n"
+            << "ms_per_step_mean: " << mean(step_ms) << "\n"
             << "particle_steps_per_second: " << (med > 0 ? 1e3 * double(sim.backend().size()) / med : 0.0) << "\n"
             << "wall_seconds: " << wall << "\n"
             << "kinetic_energy: " << m.kinetic_energy << "\n"
@@ -187,37 +144,179 @@ int run(const Options& o) {
             << "front_x: " << m.front_x << "\n";
   const PhaseTimes& pt = sim.backend().phase_times();
   if (pt.steps > 0) {
-    std::cout << "phase_ms_per_step:";
+    std::cout << "phase_ms_per_step_mean:";
     for (int p = 0; p < int(Phase::Count); ++p)
       std::cout << ' ' << phase_name(Phase(p)) << '=' << 1e3 * pt.seconds[std::size_t(p)] / double(pt.steps);
     std::cout << "\n";
   }
-  std::cout << "metrics: " << csv_path << (frame > first_frame ? ", frames: " + std::to_string(frame - first_frame) : std::string()) << "\n";
+}
+
+// Refuses a set-up whose state is already NaN or infinite: the first step would only blame the time step.
+void check_initial_state(const Scene& scene, Simulation& sim) {
+  const std::string bad = describe_non_finite(sim.particles());
+  if (bad.empty()) return;
+  std::ostringstream os;
+  os << scene.source << ": the state right after set-up is not finite: " << bad
+     << ". Likely cause: a spacing (here " << sim.setup().spacing << " m, h = " << sim.setup().h
+     << " m) whose kernel coefficients or masses leave single precision's range, or particles created on top of "
+        "each other; change resolution or the emitters";
+  throw SceneError(os.str());
+}
+
+int run(const Options& o) {
+  Scene scene = load_scene(o.scene, o.sets);
+  const double run_time = o.time > 0.0 ? o.time : scene.run_time;
+  const bool by_steps = o.steps > 0;
+  const double frames_every = o.frames_every >= 0.0 ? o.frames_every : scene.frames_every;
+  BackendFactory factory = backend_factory(o.backend);
+
+  std::error_code ec;
+  fs::create_directories(o.out, ec);
+  if (ec) throw OutputError("cannot create the output directory " + o.out + ": " + ec.message());
+  const std::unique_ptr<Frame> restart = restart_frame(o, scene);
+  // A continued run keeps the rows of metrics.csv up to its frame's step and appends after them.
+  MetricsFile csv((fs::path(o.out) / "metrics.csv").string(), kMetricsHeader, restart ? restart->info.step : -1);
+
+  Simulation sim(scene, factory, run_time, restart.get());
+  check_initial_state(scene, sim);
+  print_setup(o, scene, sim, by_steps, run_time, restart.get());
+  const Setup& st = sim.setup();
+
+  int frame = restart ? restart->info.frame_index + 1 : 0;  // a continued run numbers on
+  const int first_frame = frame;
+  auto write_frame = [&] {
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%05d.ply", frame);
+    try {
+      write_ply_frame((fs::path(o.out) / name).string(), sim.particles(), sim.frame_info(frame));
+    } catch (const std::runtime_error& e) {
+      throw OutputError(e.what());
+    }
+    ++frame;
+  };
+
+  // From here on a signal stops the run after the current step; during the set-up above it ends the
+  // program at once (the set-up may take minutes, and nothing but the metrics header is written then).
+  install_stop_handlers();
+  const bool tty = isatty(STDERR_FILENO) && !o.quiet;
+  std::vector<double> step_ms;
+  const auto start = std::chrono::steady_clock::now();
+  auto last_progress = start;
+  int status = kDone;
+  std::string output_error;
+  try {
+    double next_frame = 0.0, next_metrics = 0.0;
+    if (frames_every > 0.0) {
+      if (!restart) write_frame();  // a continued run starts from a frame that already exists
+      next_frame = frame_time_after(restart ? restart->info.frame_index : 0, frames_every);
+    }
+    if (!csv.continued()) write_metrics_row(csv, sim, measure(st.constants, sim.particles()), 0.0);
+    next_metrics = o.metrics_every;
+    while (!stop_requested() && (by_steps ? sim.steps() < o.steps : sim.time() < run_time - 1e-12)) {
+      const auto t0 = std::chrono::steady_clock::now();
+      try {
+        sim.advance();
+      } catch (const BlowUp& e) {
+        if (tty) std::cerr << '\n';
+        std::cerr << "error: " << e.what() << "\n";
+        status = kUnstable;
+        break;
+      }
+      const auto t1 = std::chrono::steady_clock::now();
+      const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+      step_ms.push_back(ms);
+      if (sim.time() >= next_metrics - 1e-12) {
+        write_metrics_row(csv, sim, measure(st.constants, sim.particles()), ms);
+        next_metrics = sim.time() + o.metrics_every;
+      }
+      csv.flush_if_due();
+      if (frames_every > 0.0 && sim.time() >= next_frame - 1e-12) {
+        write_frame();
+        next_frame += frames_every;
+      }
+      if (tty && std::chrono::duration<double>(t1 - last_progress).count() > 0.25) {
+        last_progress = t1;
+        const double wall = std::chrono::duration<double>(t1 - start).count();
+        const double frac = by_steps ? double(sim.steps()) / double(o.steps) : sim.time() / run_time;
+        const double eta = frac > 0 ? wall * (1.0 - frac) / frac : 0.0;
+        std::fprintf(stderr, "\r  t = %.4f s  step %ld  dt = %.2e s (%s)  %.1f steps/s  %zu particles  %3.0f%%  ETA %.0f s   ",
+                     sim.time(), sim.steps(), sim.last_dt(), limit_name(sim.last_limit()), sim.steps() / wall,
+                     sim.backend().size(), 100.0 * frac, eta);
+      }
+    }
+    csv.close();
+  } catch (const OutputError& e) {
+    output_error = e.what();
+    status = kOutputFailed;
+  }
+  if (tty) std::fprintf(stderr, "\n");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const ParticleState& final_state = sim.particles();
+  const Metrics m = measure(st.constants, final_state);
+
+  if (const int sig = stop_requested(); sig != 0 && status == kDone) {
+    std::cout << "interrupted: " << stop_signal_name(sig) << " at t = " << sim.time() << " s (step " << sim.steps()
+              << "); the output written so far is complete\n";
+    status = 128 + sig;
+  }
+  print_summary(sim, m, step_ms, wall);
+  std::cout << "metrics: " << csv.path() << (frame > first_frame ? ", frames: " + std::to_string(frame - first_frame) : std::string()) << "\n";
+  std::cout.flush();
+
+  if (status == kOutputFailed) {
+    std::cerr << "error: " << output_error << " (the run stopped at t = " << sim.time() << " s, step " << sim.steps()
+              << ")\n";
+  } else if (status != kUnstable) {
+    const std::string bad = describe_non_finite(final_state);
+    if (!bad.empty() || !std::isfinite(m.kinetic_energy)) {
+      std::cerr << "error: the final state at t = " << sim.time() << " s (step " << sim.steps() << ") is not finite: "
+                << (bad.empty() ? "kinetic energy " + std::to_string(m.kinetic_energy) : bad)
+                << ". Try a smaller time step (time_step.dt, time_step.max or the CFL factors) or more viscosity.\n";
+      status = kUnstable;
+    }
+  }
   return status;
+}
+
+// Reads the numeric options from their text (see option_values.h); throws OptionError.
+void check_numbers(const CLI::App& app, Options& o, const std::string& time, const std::string& steps,
+                   const std::string& frames_every, const std::string& metrics_every) {
+  if (app.count("--time")) o.time = finite_option("--time", time, 0.0, kMaxTime, true, "seconds");
+  if (app.count("--steps")) o.steps = whole_option("--steps", steps, 1, kMaxSteps);
+  if (app.count("--frames-every"))
+    o.frames_every = finite_option("--frames-every", frames_every, 0.0, kMaxTime, false, "seconds");
+  if (app.count("--metrics-every"))
+    o.metrics_every = finite_option("--metrics-every", metrics_every, 0.0, kMaxTime, false, "seconds");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options o;
+  std::string time, steps, frames_every, metrics_every;
   CLI::App app{
       "sph_run: run an SPH scene headless and record what happens.\n\n"
       "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, density_error_mean, density_error_max, v_max,\n"
-      "front_x, top_y, height_at_x0, particles, wall_ms) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply\n"
-      "(ParaView, Blender). Ends with a summary: particles, steps, median ms_per_step, time by phase.\n"
-      "Exit status: 0 done, 1 bad input, 3 the simulation became unstable."};
+      "front_x, top_y, height_at_x0, particles, wall_ms; flushed at least once per second) and, with\n"
+      "--frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends with a summary: particles,\n"
+      "steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by phase).\n"
+      "SIGINT or SIGTERM stops the run after the current step; the output is flushed and the summary printed.\n"
+      "Exit status: 0 done, 1 bad input (scene or options), 3 the simulation became unstable (or its state is\n"
+      "not finite), 4 an output could not be written, 130 stopped by SIGINT, 143 stopped by SIGTERM."};
   app.add_option("scene", o.scene, "scene file (JSON), for example scenes/dam_break.json")->required();
   app.add_option("--backend,-b", o.backend, "back end: " + [] {
     std::string s;
     for (const auto& b : available_backends()) s += (s.empty() ? "" : ", ") + b;
     return s;
   }())->capture_default_str();
-  auto* t = app.add_option("--time,-t", o.time, "simulated seconds to run (default: the scene's run.time)");
-  auto* n = app.add_option("--steps,-n", o.steps, "number of steps to run instead of a time");
+  auto* t = app.add_option("--time,-t", time, "simulated seconds to run, in (0, 1e7] (default: the scene's run.time)");
+  auto* n = app.add_option("--steps,-n", steps, "number of steps to run instead of a time, in [1, 1e12]");
   t->excludes(n);
   app.add_option("--out,-o", o.out, "output directory")->capture_default_str();
-  app.add_option("--frames-every", o.frames_every, "write a PLY frame every this many simulated seconds (0: none)");
-  app.add_option("--metrics-every", o.metrics_every, "write a metrics row at most every this many simulated seconds (0: every step)");
+  app.add_option("--frames-every", frames_every,
+                 "write a PLY frame every this many simulated seconds, in [0, 1e7] (0: none; default: the scene's)");
+  app.add_option("--metrics-every", metrics_every,
+                 "write a metrics row at most every this many simulated seconds, in [0, 1e7] (0: every step)");
   app.add_option("--set,-s", o.sets,
                  "override a scene value, key=value with a dotted path, repeatable; for example\n"
                  "--set fluids.0.viscosity=0.01 --set resolution.particles_across=40 --set integrator=leapfrog");
@@ -228,25 +327,21 @@ int main(int argc, char** argv) {
                  "are numbered on from NNNNN + 1");
   try {
     app.parse(argc, argv);
+    check_numbers(app, o, time, steps, frames_every, metrics_every);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  if (o.time == 0.0 || (o.time < 0.0 && app.count("--time"))) {
-    std::cerr << "error: --time must be positive\n";
-    return 1;
-  }
-  if (app.count("--steps") && o.steps <= 0) {
-    std::cerr << "error: --steps must be positive\n";
-    return 1;
-  }
-  if (!(o.metrics_every >= 0.0) || (app.count("--frames-every") && !(o.frames_every >= 0.0))) {
-    std::cerr << "error: --metrics-every and --frames-every must be zero or positive\n";
-    return 1;
+    // --help exits 0; every parse error is bad input (CLI11's own codes, 104 to 109, are not documented).
+    return app.exit(e) == 0 ? kDone : kBadInput;
+  } catch (const OptionError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kBadInput;
   }
   try {
     return run(o);
+  } catch (const OutputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kOutputFailed;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
-    return 1;
+    return kBadInput;
   }
 }

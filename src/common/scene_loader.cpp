@@ -1,8 +1,8 @@
 // Scene files: JSON with string names for every choice, defaults in code, strict validation. Unknown keys,
 // unknown names, wrong types, non-finite or out-of-range numbers are errors that name the file and the key.
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene.h"
+#include "scene_file.h"
 
 namespace sph {
 namespace {
@@ -278,15 +279,29 @@ BoundarySpec read_boundary(ObjectReader& r) {
   return b;
 }
 
-// "a.b.2.c=value": value is parsed as JSON, or taken as a string when it is not valid JSON.
+// The value of "key=value": JSON, or else a number as strtod reads it ("+1", ".5", "1e400"), or else the
+// text as a string. A number that is not a finite double ("1e400", "nan", "inf") is refused: taken as a
+// string it would only be reported as the wrong type.
+json override_value(const std::string& text, const std::string& value_text, const std::string& source) {
+  json value = json::parse(value_text, nullptr, false);
+  if (!value.is_discarded()) return value;
+  char* end = nullptr;
+  const double x = std::strtod(value_text.c_str(), &end);
+  if (value_text.empty() || *end != '\0') return value_text;
+  if (!std::isfinite(x))
+    throw SceneError(source + ": --set \"" + text + "\": " + value_text +
+                     " is not a finite number (allowed: magnitudes below about 1.8e308); to give it as text, "
+                     "quote it as a JSON string");
+  return x;
+}
+
+// "a.b.2.c=value": value as override_value() reads it.
 void apply_override(json& root, const std::string& text, const std::string& source) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw SceneError(source + ": --set \"" + text + "\": expected key=value (for example fluids.0.viscosity=0.01)");
   const std::string path = text.substr(0, eq);
-  const std::string value_text = text.substr(eq + 1);
-  json value = json::parse(value_text, nullptr, false);
-  if (value.is_discarded()) value = value_text;
+  const json value = override_value(text, text.substr(eq + 1), source);
   json* node = &root;
   std::stringstream ss(path);
   std::string part;
@@ -500,12 +515,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw SceneError(path + ": cannot open the scene file (does it exist and is it readable?)");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  if (in.bad()) throw SceneError(path + ": error while reading the file");
-  return parse_scene(buf.str(), path, overrides);
+  return parse_scene(read_scene_file(path), path, overrides);
 }
 
 }  // namespace sph

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # sph_run --restart end to end: a small dam break writes frames; continuing it from frame 5 (on each back end
 # given) must write frames 6, 7, ... with the very same bytes as the uninterrupted run; a truncated or
-# missing frame is refused with exit status 1 and a message naming the file.
+# missing frame is refused with exit status 1 and a message naming the file; continued in the same folder,
+# metrics.csv holds the same rows as the uninterrupted run.
 #
 #   restart_check.sh SPH_RUN SCENES_DIR OUT_DIR BACKEND...
 set -u
@@ -26,6 +27,15 @@ for backend in "$@"; do
   done
   [ "$(ls "$out/$backend"/frame_*.ply | wc -l)" -eq 11 ] || fail "$backend: expected frames 6 to 16"
 done
+
+# Continued in the folder of an interrupted run: metrics.csv keeps the rows up to the frame's step and the
+# continuation appends the same rows as the uninterrupted run (all columns but the wall time).
+cp -r "$out/whole" "$out/same"
+"$run" "${common[@]}" --restart "$out/same/frame_00005.ply" --out "$out/same" > /dev/null || fail "continuing in place failed"
+cut -d, -f1-11 "$out/whole/metrics.csv" > "$out/whole_metrics.txt"
+cut -d, -f1-11 "$out/same/metrics.csv" > "$out/same_metrics.txt"
+cmp -s "$out/whole_metrics.txt" "$out/same_metrics.txt" ||
+  fail "metrics.csv of the run continued in place differs from the uninterrupted one: $(diff "$out/whole_metrics.txt" "$out/same_metrics.txt" | head -5)"
 
 head -c 3000 "$out/whole/frame_00005.ply" > "$out/truncated.ply"
 for bad in "$out/truncated.ply" "$out/no_such_frame.ply"; do

@@ -14,18 +14,27 @@
 #   --csv-column PATH NAME  the first line of PATH, split at commas, has a field NAME
 #   --clean DIR        remove DIR before running (so old output cannot pass the file checks)
 #   --max-seconds S    the command finishes within S seconds
+#   --csv-complete PATH  PATH ends with a newline and every line has as many non-empty fields as its header
+#   --setup CMD        run CMD with bash before the command (after --clean); it must succeed
+#   --signal SIG S     send signal SIG (TERM, INT, ...) to the command S seconds after its start
 set -u
 
 expect_exit=0
 declare -a checks=()
 declare -a clean=()
+declare -a setup=()
 max_seconds=""
+signal=""
+signal_after=""
 while [ $# -gt 0 ] && [ "$1" != "--" ]; do
   case "$1" in
     --exit) expect_exit="$2"; shift 2 ;;
     --stderr|--stdout|--stdout-line|--stdout-prefix|--file) checks+=("$1" "$2" ""); shift 2 ;;
+    --csv-complete) checks+=("$1" "$2" ""); shift 2 ;;
     --min-lines|--csv-column) checks+=("$1" "$2" "$3"); shift 3 ;;
     --clean) clean+=("$2"); shift 2 ;;
+    --setup) setup+=("$2"); shift 2 ;;
+    --signal) signal="$2"; signal_after="$3"; shift 3 ;;
     --max-seconds) max_seconds="$2"; shift 2 ;;
     *) echo "run_check.sh: unknown option $1" >&2; exit 2 ;;
   esac
@@ -35,12 +44,27 @@ shift
 if [ $# -eq 0 ]; then echo "run_check.sh: missing COMMAND after --" >&2; exit 2; fi
 
 for d in "${clean[@]+"${clean[@]}"}"; do rm -rf -- "$d"; done
+for c in "${setup[@]+"${setup[@]}"}"; do
+  bash -c "$c" || { echo "run_check.sh: setup command failed: $c" >&2; exit 2; }
+done
 
 work=$(mktemp -d)
 trap 'rm -rf -- "$work"' EXIT
 start=$(date +%s.%N)
-"$@" >"$work/stdout" 2>"$work/stderr"
-status=$?
+if [ -n "$signal" ]; then
+  # Job control on: a script's background job would otherwise start with SIGINT ignored.
+  set -m
+  "$@" >"$work/stdout" 2>"$work/stderr" &
+  pid=$!
+  set +m
+  sleep "$signal_after"
+  kill -s "$signal" "$pid" 2>/dev/null || echo "run_check.sh: the command had ended before the signal"
+  wait "$pid"
+  status=$?
+else
+  "$@" >"$work/stdout" 2>"$work/stderr"
+  status=$?
+fi
 end=$(date +%s.%N)
 
 failed=0
@@ -84,6 +108,14 @@ while [ $i -lt ${#checks[@]} ]; do
       if [ ! -f "$a" ]; then fail "file missing: $a"
       else
         head -n 1 "$a" | tr -d '\r' | tr ',' '\n' | grep -qxF -- "$b" || fail "$a header has no column $b: $(head -n 1 "$a")"
+      fi ;;
+    --csv-complete)
+      if [ ! -s "$a" ]; then fail "file missing or empty: $a"
+      else
+        [ "$(tail -c 1 "$a" | od -An -c | tr -d ' ')" = '\n' ] || fail "$a does not end with a newline"
+        awk -F, 'NR == 1 { n = NF } NF != n { print FILENAME ":" NR ": " NF " fields, header has " n; bad = 1 }
+                 { for (k = 1; k <= NF; ++k) if ($k == "") { print FILENAME ":" NR ": field " k " is empty"; bad = 1 } }
+                 END { exit bad }' "$a" || fail "$a has incomplete rows"
       fi ;;
   esac
 done
