@@ -42,6 +42,7 @@ struct Options {
   std::string backend = "host";
   int frames = 0;
   std::string screenshot;
+  std::string keys;  // pressed one per frame from the first frame (scripted headless runs)
   int width = 1280, height = 720;
   int substeps = 0;
   std::string colour = "speed";
@@ -51,6 +52,8 @@ struct Options {
 
 class Demo {
  public:
+  // Throws when the command line's scene cannot be loaded (main reports it, exit 1); later scene changes
+  // never end the program.
   Demo(GLFWwindow* window, const Options& o) : window_(window), opt_(o) {
     backends_ = available_backends();
     backend_ = o.backend;
@@ -63,14 +66,60 @@ class Demo {
     const char* modes[] = {"fluid", "speed", "density_error", "pressure", "cell"};
     for (int i = 0; i < int(ColourMode::Count); ++i)
       if (o.colour == modes[i]) panel_.colour_mode = i;
-    load_scene(0, o.sets);
+    start(0, load(0));
     if (o.substeps > 0) panel_.substeps = o.substeps;
   }
 
-  void load_scene(int index, const std::vector<std::string>& sets = {}) {
-    scene_index_ = (index % int(scenes_.size()) + int(scenes_.size())) % int(scenes_.size());
-    const Scene scene = load_scene_file(scenes_[std::size_t(scene_index_)], sets);
-    sim_ = std::make_unique<Simulation>(scene, backend_factory(backend_), 1e9);
+  // R: the current scene again, with the command line's overrides. [ and ]: the previous or next scene
+  // that loads; the others are skipped with a message (stderr and panel), and the current scene stays
+  // when none does.
+  void reset() { change_scene(0); }
+  void change_scene(int direction) {
+    const int n = int(scenes_.size());
+    for (int k = direction == 0 ? 0 : 1; k <= (direction == 0 ? 0 : n - 1); ++k) {
+      const int index = ((scene_index_ + direction * k) % n + n) % n;
+      try {
+        start(index, load(index));
+        return;
+      } catch (const std::exception& e) {
+        note(std::string("skipped: ") + e.what());
+      }
+    }
+  }
+
+  // Simulation messages once a frame: jets that stopped at the particle limit.
+  void check_emission() {
+    if (sim_->emission_stopped() && !emission_note_) {
+      emission_note_ = true;
+      note("emission stopped at t = " + std::to_string(sim_->time()) + " s: the jets would exceed limits.max_particles = " +
+           std::to_string(std::llround(sim_->scene().max_particles)) + " (give the jets a lifetime or raise the limit)");
+    }
+  }
+
+ private:
+  // The scene at index with the command line's overrides; a scene that refuses them (an index another
+  // scene does not have) runs without them, and the panel says so. Runs as long as sph_run would (the
+  // scene's run.time sizes the set-up checks); jets that would exceed limits.max_particles later stop.
+  std::unique_ptr<Simulation> load(int index) {
+    const std::string& path = scenes_[std::size_t(index)];
+    Scene scene;
+    try {
+      scene = load_scene(path, opt_.sets);
+    } catch (const SceneError& e) {
+      if (opt_.sets.empty()) throw;
+      scene = load_scene(path);
+      note(std::string("overrides not applied: ") + e.what());
+    }
+    auto sim = std::make_unique<Simulation>(scene, backend_factory(backend_), scene.run_time);
+    sim->stop_emission_at_limit(true);
+    return sim;
+  }
+
+  void start(int index, std::unique_ptr<Simulation> sim) {
+    scene_index_ = index;
+    sim_ = std::move(sim);
+    emission_note_ = false;
+    const Scene& scene = sim_->scene();
     base_ = sim_->setup().constants;
     tilt_x_ = tilt_z_ = 0.0f;
     const FluidConstants& f = base_.fluids[0];
@@ -94,6 +143,14 @@ class Demo {
     radius_ = 0.5f * float(sim_->setup().spacing);
   }
 
+  // A message for the user: on stderr, and in the panel (the last few).
+  void note(const std::string& text) {
+    std::cerr << "sph_demo: " << text << "\n";
+    panel_.messages.push_back(text);
+    if (panel_.messages.size() > 4) panel_.messages.erase(panel_.messages.begin());
+  }
+
+ public:
   // One frame: input, simulation substeps within the budget, upload, draw, panel.
   void frame() {
     const auto t0 = Clock::now();
@@ -108,6 +165,7 @@ class Demo {
         if (!single_step_ && ms_since(s0) > opt_.budget_ms) break;  // frame budget: stay interactive
       }
       single_step_ = false;
+      check_emission();
     }
     panel_.sim_ms = ms_since(s0);
     const PhaseTimes& after = sim_->backend().phase_times();
@@ -132,8 +190,10 @@ class Demo {
     draw_ui(ps);
     panel_.draw_ms = ms_since(d0);
 
-    const double frame_ms = ms_since(t0);
-    fps_ = 0.9 * fps_ + 0.1 * (1e3 / std::max(frame_ms, 1e-3));
+    // Frames per second from one frame's start to the next, so waiting (paused) and swapping count too.
+    const double frame_ms = frames_ > 0 ? std::chrono::duration<double, std::milli>(t0 - last_frame_start_).count() : ms_since(t0);
+    last_frame_start_ = t0;
+    fps_ = frames_ > 0 ? 0.9 * fps_ + 0.1 * (1e3 / std::max(frame_ms, 1e-3)) : 1e3 / std::max(frame_ms, 1e-3);
     panel_.fps = fps_;
     panel_.realtime_ratio = (sim_->time() - sim_t0) / (frame_ms * 1e-3);
     ++frames_;
@@ -144,9 +204,9 @@ class Demo {
     switch (k) {
       case GLFW_KEY_SPACE: panel_.paused = !panel_.paused; break;
       case GLFW_KEY_N: single_step_ = true; break;
-      case GLFW_KEY_R: load_scene(scene_index_); break;
-      case GLFW_KEY_RIGHT_BRACKET: load_scene(scene_index_ + 1); break;
-      case GLFW_KEY_LEFT_BRACKET: load_scene(scene_index_ - 1); break;
+      case GLFW_KEY_R: reset(); break;
+      case GLFW_KEY_RIGHT_BRACKET: change_scene(+1); break;
+      case GLFW_KEY_LEFT_BRACKET: change_scene(-1); break;
       case GLFW_KEY_B: next_backend(); break;
       case GLFW_KEY_EQUAL:
       case GLFW_KEY_KP_ADD: panel_.substeps = std::min(64, panel_.substeps * 2); break;
@@ -175,12 +235,12 @@ class Demo {
     return r;
   }
   long frames() const { return frames_; }
+  // Paused without a pending single step: nothing moves until an input event.
+  bool idle() const { return panel_.paused && !single_step_; }
   const PanelModel& panel() const { return panel_; }
   Simulation& simulation() { return *sim_; }
 
  private:
-  static Scene load_scene_file(const std::string& path, const std::vector<std::string>& sets) { return sph::load_scene(path, sets); }
-
   void next_backend() {
     for (std::size_t i = 1; i <= backends_.size(); ++i) {
       const std::string& candidate = backends_[(index_of(backend_) + i) % backends_.size()];
@@ -326,9 +386,21 @@ class Demo {
   float radius_ = 0.01f;
   float tilt_x_ = 0.0f, tilt_z_ = 0.0f;
   double last_x_ = 0.0, last_y_ = 0.0, fps_ = 0.0;
-  bool single_step_ = false, screenshot_requested_ = false;
+  Clock::time_point last_frame_start_{};
+  bool single_step_ = false, screenshot_requested_ = false, emission_note_ = false;
   long frames_ = 0;
 };
+
+// The GLFW key of a --keys character (upper-case letters, space, brackets, + and -).
+int key_code(char c) {
+  switch (c) {
+    case '[': return GLFW_KEY_LEFT_BRACKET;
+    case ']': return GLFW_KEY_RIGHT_BRACKET;
+    case '+': return GLFW_KEY_EQUAL;
+    case '-': return GLFW_KEY_MINUS;
+    default: return int(c);  // GLFW_KEY_SPACE and GLFW_KEY_A..Z are the ASCII codes
+  }
+}
 
 void on_key(GLFWwindow* w, int key, int, int action, int mods) {
   if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
@@ -383,42 +455,46 @@ int run(const Options& o) {
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   int status = 0;
-  {
+  try {
     Demo demo(window, o);
     glfwSetWindowUserPointer(window, &demo);
     glfwSetKeyCallback(window, on_key);
     glfwSetScrollCallback(window, on_scroll);
     double report_at = 2.0;
     const auto start = Clock::now();
-    try {
-      while (!glfwWindowShouldClose(window)) {
-        glfwPollEvents();
-        demo.frame();
-        if (o.frames > 0 && demo.frames() >= o.frames) {
-          if (!o.screenshot.empty()) demo.write_screenshot_now(o.screenshot);
-          const PanelModel& m = demo.panel();
-          std::cout << "frames: " << demo.frames() << "\nparticles: " << m.particles << "\nfps: " << m.fps
-                    << "\nsim_ms_per_frame: " << m.sim_ms << "\ndraw_ms_per_frame: " << m.draw_ms
-                    << "\nsimulated_time: " << demo.simulation().time() << "\n";
-          break;
-        }
-        if (demo.take_screenshot_request()) {
-          char name[64];
-          std::snprintf(name, sizeof name, "sph_screenshot_%05ld.png", demo.frames());
-          demo.write_screenshot_now(name);
-        }
-        glfwSwapBuffers(window);
-        if (o.frames == 0 && std::chrono::duration<double>(Clock::now() - start).count() > report_at) {
-          report_at += 2.0;
-          const PanelModel& m = demo.panel();
-          std::printf("\r  %.1f fps  sim %.1f ms  draw %.1f ms  t = %.3f s  ", m.fps, m.sim_ms, m.draw_ms, m.sim_time);
-          std::fflush(stdout);
-        }
+    while (!glfwWindowShouldClose(window)) {
+      // Paused, the demo sleeps until an input event (or 0.1 s) instead of redrawing as fast as it can.
+      if (demo.idle()) glfwWaitEventsTimeout(0.1);
+      else glfwPollEvents();
+      if (std::size_t(demo.frames()) < o.keys.size()) demo.key(key_code(o.keys[std::size_t(demo.frames())]), 0);
+      demo.frame();
+      if (o.frames > 0 && demo.frames() >= o.frames) {
+        if (!o.screenshot.empty()) demo.write_screenshot_now(o.screenshot);
+        const PanelModel& m = demo.panel();
+        std::cout << "scene: " << m.scene << "\nframes: " << demo.frames() << "\nparticles: " << m.particles << "\nfps: " << m.fps
+                  << "\nsim_ms_per_frame: " << m.sim_ms << "\ndraw_ms_per_frame: " << m.draw_ms
+                  << "\nsimulated_time: " << demo.simulation().time() << "\n";
+        break;
       }
-    } catch (const BlowUp& e) {
-      std::cerr << "\nerror: " << e.what() << "\n";
-      status = 3;
+      if (demo.take_screenshot_request()) {
+        char name[64];
+        std::snprintf(name, sizeof name, "sph_screenshot_%05ld.png", demo.frames());
+        demo.write_screenshot_now(name);
+      }
+      glfwSwapBuffers(window);
+      if (o.frames == 0 && std::chrono::duration<double>(Clock::now() - start).count() > report_at) {
+        report_at += 2.0;
+        const PanelModel& m = demo.panel();
+        std::printf("\r  %.1f fps  sim %.1f ms  draw %.1f ms  t = %.3f s  ", m.fps, m.sim_ms, m.draw_ms, m.sim_time);
+        std::fflush(stdout);
+      }
     }
+  } catch (const BlowUp& e) {  // exit statuses as sph_run: 3 unstable, 1 bad input (a scene's limits)
+    std::cerr << "\nerror: " << e.what() << "\n";
+    status = 3;
+  } catch (const std::exception& e) {
+    std::cerr << "\nerror: " << e.what() << "\n";
+    status = 1;
   }
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
@@ -440,6 +516,11 @@ int main(int argc, char** argv) {
   app.add_option("--backend,-b", o.backend, "back end: cpu, host or cuda")->capture_default_str();
   app.add_option("--frames", o.frames, "render this many frames without input, then exit (headless runs)");
   app.add_option("--screenshot", o.screenshot, "with --frames: write the last frame to this PNG");
+  app.add_option("--keys", o.keys, "press these keys, one per frame from the first (space N R [ ] B C V + -)")
+      ->check([](const std::string& k) {
+        return k.find_first_not_of(" NRBCV[]+-") == std::string::npos ? std::string()
+                                                                         : "allowed keys: space N R [ ] B C V + -";
+      });
   app.add_option("--width", o.width, "window width")->capture_default_str()->check(CLI::Range(64, 8192));
   app.add_option("--height", o.height, "window height")->capture_default_str()->check(CLI::Range(64, 8192));
   app.add_option("--substeps", o.substeps, "simulation steps per frame (default: about 1/60 s per frame)");
@@ -450,10 +531,23 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 1;  // --help: 0; every parse error is bad input (CLI11's own codes are 100+)
   }
-  if (o.frames < 0 || (!o.screenshot.empty() && o.frames == 0)) {
+  if (o.frames < 0) {
+    std::cerr << "error: --frames must be 0 (interactive) or a positive number of frames, got " << o.frames << "\n";
+    return 1;
+  }
+  if (!o.screenshot.empty() && o.frames == 0) {
     std::cerr << "error: --screenshot needs --frames N with N > 0\n";
+    return 1;
+  }
+  if (app.count("--substeps") && o.substeps < 1) {
+    std::cerr << "error: --substeps must be at least 1, got " << o.substeps << "\n";
+    return 1;
+  }
+  if (!(std::isfinite(o.budget_ms) && o.budget_ms > 0.0)) {
+    std::cerr << "error: --budget-ms must be a finite number of milliseconds above 0, got "
+              << app.get_option("--budget-ms")->results().front() << "\n";
     return 1;
   }
   try {
