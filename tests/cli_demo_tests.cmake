@@ -47,6 +47,12 @@ sph_cli_test(bench_one_workload
   -- ${SPH_BENCH} --quick --workload thesis_cube_16 --backends cpu --out ${SPH_CLI_OUT}/bench_one)
 unset(_csv)
 
+# --- scenes/viscosity_cubes.json shows what it claims: the three cubes differ at 0.4 s --------------------
+add_test(NAME scene_viscosity_cubes_differ
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/viscosity_cubes_check.py $<TARGET_FILE:sph_run>
+                 ${SPH_CLI_SCENES}/viscosity_cubes.json ${SPH_CLI_OUT}/viscosity_cubes)
+set_tests_properties(scene_viscosity_cubes_differ PROPERTIES TIMEOUT 300)
+
 if(NOT SPH_HAVE_DEMO)
   return()
 endif()
