@@ -182,6 +182,7 @@ int main(int argc, char** argv) {
   }
   try {
     for (const std::string& b : backends) (void)backend_factory(b);  // unknown, not built, or no GPU
+    for (const Workload& w : workloads) (void)load_scene(scene_dir + "/" + w.scene, w.sets);  // --scenes, --dam-sizes
     check_writable(out);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -40,6 +40,9 @@ sph_cli_test(bench_unknown_backend
 sph_cli_test(bench_unknown_workload
   --exit 1 --max-seconds 10 --stderr "unknown --workload \"nope\"" --stderr "thesis_cube_16" --stderr "dam_break_10"
   -- ${SPH_BENCH} --quick --workload nope --out ${SPH_CLI_OUT}/bench_unknown_workload)
+sph_cli_test(bench_bad_scenes_dir
+  --exit 1 --max-seconds 10 --stderr "no_such_dir/thesis_perf_cube.json" --stderr "cannot open the scene file"
+  -- ${SPH_BENCH} --scenes ${SPH_CLI_DATA}/no_such_dir --out ${SPH_CLI_OUT}/bench_bad_scenes_dir)
 set(_csv ${SPH_CLI_OUT}/bench_one/bench.csv)
 sph_cli_test(bench_one_workload
   --exit 0 --clean ${SPH_CLI_OUT}/bench_one --stdout "thesis_cube_16" --stdout "(median)" --stdout "mean ms per step"

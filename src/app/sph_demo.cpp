@@ -249,7 +249,7 @@ class Demo {
         backend_ = candidate;
         return;
       } catch (const std::exception& e) {
-        std::cerr << "back end " << candidate << " skipped: " << e.what() << "\n";
+        note("back end " + candidate + " skipped: " + e.what());
       }
     }
   }
