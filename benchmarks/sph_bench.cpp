@@ -82,7 +82,7 @@ Result run_one(const std::string& scene_dir, const Workload& w, const std::strin
   for (int rep = 0; rep < repeats; ++rep) {
     // A fresh simulation each repeat: every repeat measures the same steps of the same workload.
     Scene scene = load_scene(scene_dir + "/" + w.scene, w.sets);
-    Simulation sim(scene, backend_factory(backend), 1e9);
+    Simulation sim(scene, backend_factory(backend), scene.run_time);  // set-up checks as sph_run's
     for (int i = 0; i < warmup; ++i) sim.advance();
     const PhaseTimes before = sim.backend().phase_times();
     for (int i = 0; i < steps; ++i) {

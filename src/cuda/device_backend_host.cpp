@@ -1,5 +1,6 @@
 // The "host" build of the device back end: device_backend.cu compiled by g++ against CCCL with Thrust's
 // OpenMP device system, so every machine runs (and tests) the device code on its CPU cores.
+#include <sys/auxv.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -23,9 +24,11 @@ namespace {
 // initialisation, which comes next, points `environ` back at the process's original environment. So, when
 // the user has set neither variable, the program executes itself again with OMP_WAIT_POLICY=passive added
 // (about a millisecond); the second start finds the variable and goes on. If that exec fails (no /proc),
-// the program runs on with libgomp's default. This object is linked into every executable that can create
-// the host back end: it holds make_host_backend.
+// the program runs on with libgomp's default, as it does when started through the dynamic loader by hand
+// (`ld.so PROGRAM`, AT_BASE 0), where /proc/self/exe is the loader. This object is linked into every
+// executable that can create the host back end: it holds make_host_backend.
 void prefer_passive_omp_waiting(int, char** argv, char** envp) {
+  if (getauxval(AT_BASE) == 0) return;
   std::size_t n = 0;
   for (; envp[n]; ++n)
     if (!std::strncmp(envp[n], "OMP_WAIT_POLICY=", 16) || !std::strncmp(envp[n], "GOMP_SPINCOUNT=", 15)) return;
