@@ -8,13 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -27,8 +25,9 @@
 #include "../render/screenshot.h"
 #include "../render/ui_panel.h"
 #include "backends.h"
+#include "demo_options.h"
+#include "demo_scenes.h"
 
-namespace fs = std::filesystem;
 using namespace sph;
 using namespace sph::render;
 
@@ -37,32 +36,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-struct Options {
-  std::string scene = "scenes/dam_break.json";
-  std::string backend = "host";
-  int frames = 0;
-  std::string screenshot;
-  std::string keys;  // pressed one per frame from the first frame (scripted headless runs)
-  int width = 1280, height = 720;
-  int substeps = 0;
-  std::string colour = "speed";
-  std::vector<std::string> sets;
-  double budget_ms = 40.0;
-};
-
 class Demo {
  public:
   // Throws when the command line's scene cannot be loaded (main reports it, exit 1); later scene changes
   // never end the program.
-  Demo(GLFWwindow* window, const Options& o) : window_(window), opt_(o) {
+  Demo(GLFWwindow* window, const DemoOptions& o) : window_(window), opt_(o), scenes_(o.scene, o.sets) {
     backends_ = available_backends();
     backend_ = o.backend;
-    // Scenes for [ and ]: every JSON beside the chosen one, the chosen one first.
-    const fs::path dir = fs::path(o.scene).parent_path().empty() ? fs::path(".") : fs::path(o.scene).parent_path();
-    scenes_.push_back(o.scene);
-    for (const auto& e : fs::directory_iterator(dir))
-      if (e.path().extension() == ".json" && fs::absolute(e.path()) != fs::absolute(o.scene)) scenes_.push_back(e.path().string());
-    std::sort(scenes_.begin() + 1, scenes_.end());
     const char* modes[] = {"fluid", "speed", "density_error", "pressure", "cell"};
     for (int i = 0; i < int(ColourMode::Count); ++i)
       if (o.colour == modes[i]) panel_.colour_mode = i;
@@ -75,9 +55,8 @@ class Demo {
   // when none does.
   void reset() { change_scene(0); }
   void change_scene(int direction) {
-    const int n = int(scenes_.size());
-    for (int k = direction == 0 ? 0 : 1; k <= (direction == 0 ? 0 : n - 1); ++k) {
-      const int index = ((scene_index_ + direction * k) % n + n) % n;
+    for (int k = direction == 0 ? 0 : 1; k <= (direction == 0 ? 0 : scenes_.size() - 1); ++k) {
+      const int index = scenes_.wrap(scene_index_ + direction * k);
       try {
         start(index, load(index));
         return;
@@ -97,22 +76,8 @@ class Demo {
   }
 
  private:
-  // The scene at index with the command line's overrides; a scene that refuses them (an index another
-  // scene does not have) runs without them, and the panel says so. Runs as long as sph_run would (the
-  // scene's run.time sizes the set-up checks); jets that would exceed limits.max_particles later stop.
   std::unique_ptr<Simulation> load(int index) {
-    const std::string& path = scenes_[std::size_t(index)];
-    Scene scene;
-    try {
-      scene = load_scene(path, opt_.sets);
-    } catch (const SceneError& e) {
-      if (opt_.sets.empty()) throw;
-      scene = load_scene(path);
-      note(std::string("overrides not applied: ") + e.what());
-    }
-    auto sim = std::make_unique<Simulation>(scene, backend_factory(backend_), scene.run_time);
-    sim->stop_emission_at_limit(true);
-    return sim;
+    return scenes_.load(index, backend_factory(backend_), [this](const std::string& text) { note(text); });
   }
 
   void start(int index, std::unique_ptr<Simulation> sim) {
@@ -371,8 +336,9 @@ class Demo {
   }
 
   GLFWwindow* window_;
-  Options opt_;
-  std::vector<std::string> scenes_, backends_;
+  DemoOptions opt_;
+  DemoScenes scenes_;
+  std::vector<std::string> backends_;
   std::string backend_;
   int scene_index_ = 0;
   std::unique_ptr<Simulation> sim_;
@@ -412,7 +378,7 @@ void on_scroll(GLFWwindow* w, double, double dy) {
 }
 void on_glfw_error(int code, const char* text) { std::cerr << "GLFW error " << code << ": " << text << "\n"; }
 
-int run(const Options& o) {
+int run(const DemoOptions& o) {
   glfwSetErrorCallback(on_glfw_error);
   const char* display = std::getenv("DISPLAY");
   if (!glfwInit() || !display || !*display) {
@@ -507,49 +473,8 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  CLI::App app{"sph_demo: watch and play with an SPH fluid in real time (OpenGL window, Dear ImGui panel).\n"
-               "Controls: space pause, N step, R reset, [ ] scenes, B back end, arrows tilt gravity, J/L push,\n"
-               "ctrl+drag pull/push the water, mouse orbit/pan/zoom, +/- substeps, C colour, V points, P screenshot.\n"
-               "Exit status: 0 done, 1 bad input, 2 no display or OpenGL, 3 the simulation became unstable."};
-  app.add_option("--scene,scene", o.scene, "scene file (JSON)")->capture_default_str();
-  app.add_option("--backend,-b", o.backend, "back end: cpu, host or cuda")->capture_default_str();
-  app.add_option("--frames", o.frames, "render this many frames without input, then exit (headless runs)");
-  app.add_option("--screenshot", o.screenshot, "with --frames: write the last frame to this PNG");
-  app.add_option("--keys", o.keys, "press these keys, one per frame from the first (space N R [ ] B C V + -)")
-      ->check([](const std::string& k) {
-        return k.find_first_not_of(" NRBCV[]+-") == std::string::npos ? std::string()
-                                                                         : "allowed keys: space N R [ ] B C V + -";
-      });
-  app.add_option("--width", o.width, "window width")->capture_default_str()->check(CLI::Range(64, 8192));
-  app.add_option("--height", o.height, "window height")->capture_default_str()->check(CLI::Range(64, 8192));
-  app.add_option("--substeps", o.substeps, "simulation steps per frame (default: about 1/60 s per frame)");
-  app.add_option("--colour", o.colour, "fluid, speed, density_error, pressure or cell")
-      ->capture_default_str()->check(CLI::IsMember({"fluid", "speed", "density_error", "pressure", "cell"}));
-  app.add_option("--budget-ms", o.budget_ms, "simulation time budget per frame, milliseconds")->capture_default_str();
-  app.add_option("--set,-s", o.sets, "override a scene value, key=value (as sph_run)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;  // --help: 0; every parse error is bad input (CLI11's own codes are 100+)
-  }
-  if (o.frames < 0) {
-    std::cerr << "error: --frames must be 0 (interactive) or a positive number of frames, got " << o.frames << "\n";
-    return 1;
-  }
-  if (!o.screenshot.empty() && o.frames == 0) {
-    std::cerr << "error: --screenshot needs --frames N with N > 0\n";
-    return 1;
-  }
-  if (app.count("--substeps") && o.substeps < 1) {
-    std::cerr << "error: --substeps must be at least 1, got " << o.substeps << "\n";
-    return 1;
-  }
-  if (!(std::isfinite(o.budget_ms) && o.budget_ms > 0.0)) {
-    std::cerr << "error: --budget-ms must be a finite number of milliseconds above 0, got "
-              << app.get_option("--budget-ms")->results().front() << "\n";
-    return 1;
-  }
+  DemoOptions o;
+  if (const int status = parse_demo_options(argc, argv, o); status >= 0) return status;
   try {
     (void)load_scene(o.scene, o.sets);  // bad scene or back end: a clear message before any window opens
     (void)backend_factory(o.backend);
