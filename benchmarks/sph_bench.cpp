@@ -1,6 +1,8 @@
 // sph_bench: the CPU-vs-GPU benchmark. Fixed workloads on every usable back end: the thesis's performance
 // cube (16^3 and 32^3, thesis 5.2 parameters) and the dam break at several sizes. Warm-up steps, repeated
-// runs, medians. Prints a table and writes CSV and JSON that name the hardware.
+// runs. ms/step is the median of the measured steps (robust to other work on the machine); the time by phase
+// is a mean per step (the back ends accumulate it), and ms_mean is the mean of the same steps, so the two
+// can be compared. Prints a table and writes CSV and JSON that name the hardware.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -41,8 +44,8 @@ struct Result {
   std::string backend, workload;
   long particles = 0;
   double ms_per_step = 0.0;  // median over the measured steps of all repeats
-  double ms_min = 0.0, ms_max = 0.0;
-  PhaseTimes phases;         // ms per step by phase
+  double ms_mean = 0.0, ms_min = 0.0, ms_max = 0.0;
+  PhaseTimes phases;         // mean ms per step by phase
   double speedup_vs_cpu = 0.0;
   double thesis_cpu_ms = 0.0, thesis_gpu_ms = 0.0;
 };
@@ -79,7 +82,7 @@ Result run_one(const std::string& scene_dir, const Workload& w, const std::strin
   for (int rep = 0; rep < repeats; ++rep) {
     // A fresh simulation each repeat: every repeat measures the same steps of the same workload.
     Scene scene = load_scene(scene_dir + "/" + w.scene, w.sets);
-    Simulation sim(scene, backend_factory(backend), 1e9);
+    Simulation sim(scene, backend_factory(backend), scene.run_time);  // set-up checks as sph_run's
     for (int i = 0; i < warmup; ++i) sim.advance();
     const PhaseTimes before = sim.backend().phase_times();
     for (int i = 0; i < steps; ++i) {
@@ -93,9 +96,22 @@ Result run_one(const std::string& scene_dir, const Workload& w, const std::strin
     r.particles = long(sim.backend().size());
   }
   r.ms_per_step = median(samples);
+  r.ms_mean = std::accumulate(samples.begin(), samples.end(), 0.0) / double(samples.size());
   r.ms_min = *std::min_element(samples.begin(), samples.end());
   r.ms_max = *std::max_element(samples.begin(), samples.end());
   return r;
+}
+
+// The output folder must take files before any workload runs (a bad --out would waste the whole run).
+void check_writable(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const fs::path probe = fs::path(dir) / ".sph_bench_write_check";
+  std::ofstream f(probe);
+  if (ec || !f || !(f << "ok\n") || !(f.flush()))
+    throw std::invalid_argument("--out " + dir + ": cannot create or write files there" + (ec ? " (" + ec.message() + ")" : std::string()));
+  f.close();
+  fs::remove(probe, ec);
 }
 
 std::string json_escape(const std::string& s) {
@@ -126,10 +142,12 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(4, 400));
   app.add_option("--dam-cuda", dam_cuda_only, "an extra dam break resolution for cuda only (0: none)")->capture_default_str();
   app.add_flag("--quick", quick, "small and short: a smoke test (under a minute)");
+  std::vector<std::string> only;
+  app.add_option("--workload,-w", only, "run only these workloads (repeatable; names as in the table)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 1;  // --help: 0; every parse error is bad input (CLI11's own codes are 100+)
   }
   if (quick) {
     warmup = 1;
@@ -137,6 +155,38 @@ int main(int argc, char** argv) {
     repeats = 1;
     dam_sizes = {10};
     dam_cuda_only = 0;
+  }
+  std::vector<Workload> workloads{
+      {"thesis_cube_16", "thesis_perf_cube.json", {}, 241.0, 3.0, false},
+      {"thesis_cube_32", "thesis_perf_cube_32.json", {}, 2677.0, 18.0, false}};
+  if (quick) workloads.pop_back();
+  for (int n : dam_sizes)
+    workloads.push_back({"dam_break_" + std::to_string(n), "dam_break.json",
+                         {"resolution.particles_across=" + std::to_string(n)}, 0.0, 0.0, false});
+  if (dam_cuda_only > 0)
+    workloads.push_back({"dam_break_" + std::to_string(dam_cuda_only), "dam_break.json",
+                         {"resolution.particles_across=" + std::to_string(dam_cuda_only)}, 0.0, 0.0, true});
+
+  // Every argument is checked before the first workload runs.
+  if (!only.empty()) {
+    std::string names;
+    for (const Workload& w : workloads) names += (names.empty() ? "" : ", ") + w.name;
+    for (const std::string& name : only)
+      if (std::none_of(workloads.begin(), workloads.end(), [&](const Workload& w) { return w.name == name; })) {
+        std::cerr << "error: unknown --workload \"" << name << "\"; workloads" << (quick ? " with --quick" : "") << ": " << names << "\n";
+        return 1;
+      }
+    workloads.erase(std::remove_if(workloads.begin(), workloads.end(),
+                                   [&](const Workload& w) { return std::find(only.begin(), only.end(), w.name) == only.end(); }),
+                    workloads.end());
+  }
+  try {
+    for (const std::string& b : backends) (void)backend_factory(b);  // unknown, not built, or no GPU
+    for (const Workload& w : workloads) (void)load_scene(scene_dir + "/" + w.scene, w.sets);  // --scenes, --dam-sizes
+    check_writable(out);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
   }
   if (backends.empty()) {
     backends.push_back("cpu");
@@ -151,20 +201,10 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::vector<Workload> workloads{
-      {"thesis_cube_16", "thesis_perf_cube.json", {}, 241.0, 3.0, false},
-      {"thesis_cube_32", "thesis_perf_cube_32.json", {}, 2677.0, 18.0, false}};
-  if (quick) workloads.pop_back();
-  for (int n : dam_sizes)
-    workloads.push_back({"dam_break_" + std::to_string(n), "dam_break.json",
-                         {"resolution.particles_across=" + std::to_string(n)}, 0.0, 0.0, false});
-  if (dam_cuda_only > 0)
-    workloads.push_back({"dam_break_" + std::to_string(dam_cuda_only), "dam_break.json",
-                         {"resolution.particles_across=" + std::to_string(dam_cuda_only)}, 0.0, 0.0, true});
-
   const std::string cpu = cpu_model(), gpu = cuda_device_name();
   std::cout << "CPU: " << cpu << ", host threads: " << host_threads() << "\nGPU: " << (gpu.empty() ? "none" : gpu)
-            << "\nwarm-up " << warmup << " steps, " << steps << " measured steps x " << repeats << " repeats, median\n\n";
+            << "\nwarm-up " << warmup << " steps, " << steps << " measured steps x " << repeats
+            << " repeats; ms/step: median of the measured steps, time by phase: mean\n\n";
 
   std::vector<Result> results;
   try {
@@ -196,7 +236,8 @@ int main(int argc, char** argv) {
     std::printf("%-8s %-16s %10ld %11.3f %14.3e %9s %11s %11s\n", r.backend.c_str(), r.workload.c_str(), r.particles,
                 r.ms_per_step, 1e3 * double(r.particles) / r.ms_per_step, vs_cpu, vs_tc, vs_tg);
   }
-  std::printf("\ntime by phase, ms per step:\n%-8s %-16s", "backend", "workload");
+  std::printf("\ntime by phase, mean ms per step (the mean of the whole step is ms_mean in the CSV):\n%-8s %-16s",
+              "backend", "workload");
   for (int p = 0; p < int(Phase::Count); ++p) std::printf(" %10s", phase_name(Phase(p)));
   std::printf("\n");
   for (const Result& r : results) {
@@ -212,19 +253,20 @@ int main(int argc, char** argv) {
     std::cerr << "error: cannot write results into " << out << "\n";
     return 1;
   }
-  csv << "backend,workload,particles,ms_per_step,ms_min,ms_max,particle_steps_per_second,speedup_vs_cpu,thesis_cpu_ms,thesis_gpu_ms";
+  csv << "backend,workload,particles,ms_per_step,ms_mean,ms_min,ms_max,particle_steps_per_second,speedup_vs_cpu,thesis_cpu_ms,thesis_gpu_ms";
   for (int p = 0; p < int(Phase::Count); ++p) csv << ",ms_" << phase_name(Phase(p));
   csv << ",cpu,host_threads,gpu\n";
   js << "{\n  \"cpu\": \"" << json_escape(cpu) << "\",\n  \"host_threads\": " << host_threads() << ",\n  \"gpu\": \""
      << json_escape(gpu) << "\",\n  \"warmup\": " << warmup << ", \"steps\": " << steps << ", \"repeats\": " << repeats
+     << ",\n  \"statistics\": \"ms_per_step: median of the measured steps; ms_mean and phases_ms: mean per step\""
      << ",\n  \"results\": [\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const Result& r = results[i];
     const double pss = 1e3 * double(r.particles) / r.ms_per_step;
-    csv << r.backend << ',' << r.workload << ',' << r.particles << ',' << r.ms_per_step << ',' << r.ms_min << ','
+    csv << r.backend << ',' << r.workload << ',' << r.particles << ',' << r.ms_per_step << ',' << r.ms_mean << ',' << r.ms_min << ','
         << r.ms_max << ',' << pss << ',' << r.speedup_vs_cpu << ',' << r.thesis_cpu_ms << ',' << r.thesis_gpu_ms;
     js << "    {\"backend\": \"" << r.backend << "\", \"workload\": \"" << r.workload << "\", \"particles\": " << r.particles
-       << ", \"ms_per_step\": " << r.ms_per_step << ", \"ms_min\": " << r.ms_min << ", \"ms_max\": " << r.ms_max
+       << ", \"ms_per_step\": " << r.ms_per_step << ", \"ms_mean\": " << r.ms_mean << ", \"ms_min\": " << r.ms_min << ", \"ms_max\": " << r.ms_max
        << ", \"particle_steps_per_second\": " << pss << ", \"speedup_vs_cpu\": " << r.speedup_vs_cpu << ", \"phases_ms\": {";
     for (int p = 0; p < int(Phase::Count); ++p) {
       csv << ',' << r.phases.seconds[std::size_t(p)];

@@ -8,13 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -27,8 +25,9 @@
 #include "../render/screenshot.h"
 #include "../render/ui_panel.h"
 #include "backends.h"
+#include "demo_options.h"
+#include "demo_scenes.h"
 
-namespace fs = std::filesystem;
 using namespace sph;
 using namespace sph::render;
 
@@ -37,40 +36,55 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-struct Options {
-  std::string scene = "scenes/dam_break.json";
-  std::string backend = "host";
-  int frames = 0;
-  std::string screenshot;
-  int width = 1280, height = 720;
-  int substeps = 0;
-  std::string colour = "speed";
-  std::vector<std::string> sets;
-  double budget_ms = 40.0;
-};
-
 class Demo {
  public:
-  Demo(GLFWwindow* window, const Options& o) : window_(window), opt_(o) {
+  // Throws when the command line's scene cannot be loaded (main reports it, exit 1); later scene changes
+  // never end the program.
+  Demo(GLFWwindow* window, const DemoOptions& o) : window_(window), opt_(o), scenes_(o.scene, o.sets) {
     backends_ = available_backends();
     backend_ = o.backend;
-    // Scenes for [ and ]: every JSON beside the chosen one, the chosen one first.
-    const fs::path dir = fs::path(o.scene).parent_path().empty() ? fs::path(".") : fs::path(o.scene).parent_path();
-    scenes_.push_back(o.scene);
-    for (const auto& e : fs::directory_iterator(dir))
-      if (e.path().extension() == ".json" && fs::absolute(e.path()) != fs::absolute(o.scene)) scenes_.push_back(e.path().string());
-    std::sort(scenes_.begin() + 1, scenes_.end());
     const char* modes[] = {"fluid", "speed", "density_error", "pressure", "cell"};
     for (int i = 0; i < int(ColourMode::Count); ++i)
       if (o.colour == modes[i]) panel_.colour_mode = i;
-    load_scene(0, o.sets);
+    start(0, load(0));
     if (o.substeps > 0) panel_.substeps = o.substeps;
   }
 
-  void load_scene(int index, const std::vector<std::string>& sets = {}) {
-    scene_index_ = (index % int(scenes_.size()) + int(scenes_.size())) % int(scenes_.size());
-    const Scene scene = load_scene_file(scenes_[std::size_t(scene_index_)], sets);
-    sim_ = std::make_unique<Simulation>(scene, backend_factory(backend_), 1e9);
+  // R: the current scene again, with the command line's overrides. [ and ]: the previous or next scene
+  // that loads; the others are skipped with a message (stderr and panel), and the current scene stays
+  // when none does.
+  void reset() { change_scene(0); }
+  void change_scene(int direction) {
+    for (int k = direction == 0 ? 0 : 1; k <= (direction == 0 ? 0 : scenes_.size() - 1); ++k) {
+      const int index = scenes_.wrap(scene_index_ + direction * k);
+      try {
+        start(index, load(index));
+        return;
+      } catch (const std::exception& e) {
+        note(std::string("skipped: ") + e.what());
+      }
+    }
+  }
+
+  // Simulation messages once a frame: jets that stopped at the particle limit.
+  void check_emission() {
+    if (sim_->emission_stopped() && !emission_note_) {
+      emission_note_ = true;
+      note("emission stopped at t = " + std::to_string(sim_->time()) + " s: the jets would exceed limits.max_particles = " +
+           std::to_string(std::llround(sim_->scene().max_particles)) + " (give the jets a lifetime or raise the limit)");
+    }
+  }
+
+ private:
+  std::unique_ptr<Simulation> load(int index) {
+    return scenes_.load(index, backend_factory(backend_), [this](const std::string& text) { note(text); });
+  }
+
+  void start(int index, std::unique_ptr<Simulation> sim) {
+    scene_index_ = index;
+    sim_ = std::move(sim);
+    emission_note_ = false;
+    const Scene& scene = sim_->scene();
     base_ = sim_->setup().constants;
     tilt_x_ = tilt_z_ = 0.0f;
     const FluidConstants& f = base_.fluids[0];
@@ -94,6 +108,14 @@ class Demo {
     radius_ = 0.5f * float(sim_->setup().spacing);
   }
 
+  // A message for the user: on stderr, and in the panel (the last few).
+  void note(const std::string& text) {
+    std::cerr << "sph_demo: " << text << "\n";
+    panel_.messages.push_back(text);
+    if (panel_.messages.size() > 4) panel_.messages.erase(panel_.messages.begin());
+  }
+
+ public:
   // One frame: input, simulation substeps within the budget, upload, draw, panel.
   void frame() {
     const auto t0 = Clock::now();
@@ -108,6 +130,7 @@ class Demo {
         if (!single_step_ && ms_since(s0) > opt_.budget_ms) break;  // frame budget: stay interactive
       }
       single_step_ = false;
+      check_emission();
     }
     panel_.sim_ms = ms_since(s0);
     const PhaseTimes& after = sim_->backend().phase_times();
@@ -132,8 +155,10 @@ class Demo {
     draw_ui(ps);
     panel_.draw_ms = ms_since(d0);
 
-    const double frame_ms = ms_since(t0);
-    fps_ = 0.9 * fps_ + 0.1 * (1e3 / std::max(frame_ms, 1e-3));
+    // Frames per second from one frame's start to the next, so waiting (paused) and swapping count too.
+    const double frame_ms = frames_ > 0 ? std::chrono::duration<double, std::milli>(t0 - last_frame_start_).count() : ms_since(t0);
+    last_frame_start_ = t0;
+    fps_ = frames_ > 0 ? 0.9 * fps_ + 0.1 * (1e3 / std::max(frame_ms, 1e-3)) : 1e3 / std::max(frame_ms, 1e-3);
     panel_.fps = fps_;
     panel_.realtime_ratio = (sim_->time() - sim_t0) / (frame_ms * 1e-3);
     ++frames_;
@@ -144,9 +169,9 @@ class Demo {
     switch (k) {
       case GLFW_KEY_SPACE: panel_.paused = !panel_.paused; break;
       case GLFW_KEY_N: single_step_ = true; break;
-      case GLFW_KEY_R: load_scene(scene_index_); break;
-      case GLFW_KEY_RIGHT_BRACKET: load_scene(scene_index_ + 1); break;
-      case GLFW_KEY_LEFT_BRACKET: load_scene(scene_index_ - 1); break;
+      case GLFW_KEY_R: reset(); break;
+      case GLFW_KEY_RIGHT_BRACKET: change_scene(+1); break;
+      case GLFW_KEY_LEFT_BRACKET: change_scene(-1); break;
       case GLFW_KEY_B: next_backend(); break;
       case GLFW_KEY_EQUAL:
       case GLFW_KEY_KP_ADD: panel_.substeps = std::min(64, panel_.substeps * 2); break;
@@ -175,12 +200,12 @@ class Demo {
     return r;
   }
   long frames() const { return frames_; }
+  // Paused without a pending single step: nothing moves until an input event.
+  bool idle() const { return panel_.paused && !single_step_; }
   const PanelModel& panel() const { return panel_; }
   Simulation& simulation() { return *sim_; }
 
  private:
-  static Scene load_scene_file(const std::string& path, const std::vector<std::string>& sets) { return sph::load_scene(path, sets); }
-
   void next_backend() {
     for (std::size_t i = 1; i <= backends_.size(); ++i) {
       const std::string& candidate = backends_[(index_of(backend_) + i) % backends_.size()];
@@ -189,7 +214,7 @@ class Demo {
         backend_ = candidate;
         return;
       } catch (const std::exception& e) {
-        std::cerr << "back end " << candidate << " skipped: " << e.what() << "\n";
+        note("back end " + candidate + " skipped: " + e.what());
       }
     }
   }
@@ -311,8 +336,9 @@ class Demo {
   }
 
   GLFWwindow* window_;
-  Options opt_;
-  std::vector<std::string> scenes_, backends_;
+  DemoOptions opt_;
+  DemoScenes scenes_;
+  std::vector<std::string> backends_;
   std::string backend_;
   int scene_index_ = 0;
   std::unique_ptr<Simulation> sim_;
@@ -326,9 +352,21 @@ class Demo {
   float radius_ = 0.01f;
   float tilt_x_ = 0.0f, tilt_z_ = 0.0f;
   double last_x_ = 0.0, last_y_ = 0.0, fps_ = 0.0;
-  bool single_step_ = false, screenshot_requested_ = false;
+  Clock::time_point last_frame_start_{};
+  bool single_step_ = false, screenshot_requested_ = false, emission_note_ = false;
   long frames_ = 0;
 };
+
+// The GLFW key of a --keys character (upper-case letters, space, brackets, + and -).
+int key_code(char c) {
+  switch (c) {
+    case '[': return GLFW_KEY_LEFT_BRACKET;
+    case ']': return GLFW_KEY_RIGHT_BRACKET;
+    case '+': return GLFW_KEY_EQUAL;
+    case '-': return GLFW_KEY_MINUS;
+    default: return int(c);  // GLFW_KEY_SPACE and GLFW_KEY_A..Z are the ASCII codes
+  }
+}
 
 void on_key(GLFWwindow* w, int key, int, int action, int mods) {
   if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
@@ -340,7 +378,7 @@ void on_scroll(GLFWwindow* w, double, double dy) {
 }
 void on_glfw_error(int code, const char* text) { std::cerr << "GLFW error " << code << ": " << text << "\n"; }
 
-int run(const Options& o) {
+int run(const DemoOptions& o) {
   glfwSetErrorCallback(on_glfw_error);
   const char* display = std::getenv("DISPLAY");
   if (!glfwInit() || !display || !*display) {
@@ -383,42 +421,46 @@ int run(const Options& o) {
   ImGui_ImplOpenGL3_Init("#version 330 core");
 
   int status = 0;
-  {
+  try {
     Demo demo(window, o);
     glfwSetWindowUserPointer(window, &demo);
     glfwSetKeyCallback(window, on_key);
     glfwSetScrollCallback(window, on_scroll);
     double report_at = 2.0;
     const auto start = Clock::now();
-    try {
-      while (!glfwWindowShouldClose(window)) {
-        glfwPollEvents();
-        demo.frame();
-        if (o.frames > 0 && demo.frames() >= o.frames) {
-          if (!o.screenshot.empty()) demo.write_screenshot_now(o.screenshot);
-          const PanelModel& m = demo.panel();
-          std::cout << "frames: " << demo.frames() << "\nparticles: " << m.particles << "\nfps: " << m.fps
-                    << "\nsim_ms_per_frame: " << m.sim_ms << "\ndraw_ms_per_frame: " << m.draw_ms
-                    << "\nsimulated_time: " << demo.simulation().time() << "\n";
-          break;
-        }
-        if (demo.take_screenshot_request()) {
-          char name[64];
-          std::snprintf(name, sizeof name, "sph_screenshot_%05ld.png", demo.frames());
-          demo.write_screenshot_now(name);
-        }
-        glfwSwapBuffers(window);
-        if (o.frames == 0 && std::chrono::duration<double>(Clock::now() - start).count() > report_at) {
-          report_at += 2.0;
-          const PanelModel& m = demo.panel();
-          std::printf("\r  %.1f fps  sim %.1f ms  draw %.1f ms  t = %.3f s  ", m.fps, m.sim_ms, m.draw_ms, m.sim_time);
-          std::fflush(stdout);
-        }
+    while (!glfwWindowShouldClose(window)) {
+      // Paused, the demo sleeps until an input event (or 0.1 s) instead of redrawing as fast as it can.
+      if (demo.idle()) glfwWaitEventsTimeout(0.1);
+      else glfwPollEvents();
+      if (std::size_t(demo.frames()) < o.keys.size()) demo.key(key_code(o.keys[std::size_t(demo.frames())]), 0);
+      demo.frame();
+      if (o.frames > 0 && demo.frames() >= o.frames) {
+        if (!o.screenshot.empty()) demo.write_screenshot_now(o.screenshot);
+        const PanelModel& m = demo.panel();
+        std::cout << "scene: " << m.scene << "\nframes: " << demo.frames() << "\nparticles: " << m.particles << "\nfps: " << m.fps
+                  << "\nsim_ms_per_frame: " << m.sim_ms << "\ndraw_ms_per_frame: " << m.draw_ms
+                  << "\nsimulated_time: " << demo.simulation().time() << "\n";
+        break;
       }
-    } catch (const BlowUp& e) {
-      std::cerr << "\nerror: " << e.what() << "\n";
-      status = 3;
+      if (demo.take_screenshot_request()) {
+        char name[64];
+        std::snprintf(name, sizeof name, "sph_screenshot_%05ld.png", demo.frames());
+        demo.write_screenshot_now(name);
+      }
+      glfwSwapBuffers(window);
+      if (o.frames == 0 && std::chrono::duration<double>(Clock::now() - start).count() > report_at) {
+        report_at += 2.0;
+        const PanelModel& m = demo.panel();
+        std::printf("\r  %.1f fps  sim %.1f ms  draw %.1f ms  t = %.3f s  ", m.fps, m.sim_ms, m.draw_ms, m.sim_time);
+        std::fflush(stdout);
+      }
     }
+  } catch (const BlowUp& e) {  // exit statuses as sph_run: 3 unstable, 1 bad input (a scene's limits)
+    std::cerr << "\nerror: " << e.what() << "\n";
+    status = 3;
+  } catch (const std::exception& e) {
+    std::cerr << "\nerror: " << e.what() << "\n";
+    status = 1;
   }
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
@@ -431,31 +473,8 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  CLI::App app{"sph_demo: watch and play with an SPH fluid in real time (OpenGL window, Dear ImGui panel).\n"
-               "Controls: space pause, N step, R reset, [ ] scenes, B back end, arrows tilt gravity, J/L push,\n"
-               "ctrl+drag pull/push the water, mouse orbit/pan/zoom, +/- substeps, C colour, V points, P screenshot.\n"
-               "Exit status: 0 done, 1 bad input, 2 no display or OpenGL, 3 the simulation became unstable."};
-  app.add_option("--scene,scene", o.scene, "scene file (JSON)")->capture_default_str();
-  app.add_option("--backend,-b", o.backend, "back end: cpu, host or cuda")->capture_default_str();
-  app.add_option("--frames", o.frames, "render this many frames without input, then exit (headless runs)");
-  app.add_option("--screenshot", o.screenshot, "with --frames: write the last frame to this PNG");
-  app.add_option("--width", o.width, "window width")->capture_default_str()->check(CLI::Range(64, 8192));
-  app.add_option("--height", o.height, "window height")->capture_default_str()->check(CLI::Range(64, 8192));
-  app.add_option("--substeps", o.substeps, "simulation steps per frame (default: about 1/60 s per frame)");
-  app.add_option("--colour", o.colour, "fluid, speed, density_error, pressure or cell")
-      ->capture_default_str()->check(CLI::IsMember({"fluid", "speed", "density_error", "pressure", "cell"}));
-  app.add_option("--budget-ms", o.budget_ms, "simulation time budget per frame, milliseconds")->capture_default_str();
-  app.add_option("--set,-s", o.sets, "override a scene value, key=value (as sph_run)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  if (o.frames < 0 || (!o.screenshot.empty() && o.frames == 0)) {
-    std::cerr << "error: --screenshot needs --frames N with N > 0\n";
-    return 1;
-  }
+  DemoOptions o;
+  if (const int status = parse_demo_options(argc, argv, o); status >= 0) return status;
   try {
     (void)load_scene(o.scene, o.sets);  // bad scene or back end: a clear message before any window opens
     (void)backend_factory(o.backend);

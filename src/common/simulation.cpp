@@ -109,9 +109,14 @@ void Simulation::advance() {
   const double dt = choice.dt;
   backend_->step(float(dt));
   for (JetEmitter& jet : setup_.jets) {
+    if (emission_stopped_) break;
     std::vector<Spawn> spawns = jet.advance(time_, dt, setup_.next_id);
     if (spawns.empty()) continue;
     if (double(backend_->size() + spawns.size()) > scene_.max_particles) {
+      if (stop_emission_at_limit_) {
+        emission_stopped_ = true;
+        break;
+      }
       std::ostringstream os;
       os << scene_.source << ": at t = " << time_ << " s the jets would exceed limits.max_particles = "
          << std::llround(scene_.max_particles) << "; give the jets a lifetime or raise the limit";

@@ -58,6 +58,11 @@ class Simulation {
   // The header of a frame of the current state (write_ply_frame), numbered frame_index.
   FrameInfo frame_info(int frame_index) const;
 
+  // A run without an end (the demo): when the jets would exceed limits.max_particles, emission stops and
+  // emission_stopped() says so, instead of the SceneError a run of fixed length gets.
+  void stop_emission_at_limit(bool on) { stop_emission_at_limit_ = on; }
+  bool emission_stopped() const { return emission_stopped_; }
+
  private:
   Scene scene_;
   Setup setup_;
@@ -71,6 +76,7 @@ class Simulation {
   long steps_ = 0;
   double last_dt_ = 0.0;
   StepLimit last_limit_ = StepLimit::Fixed;
+  bool stop_emission_at_limit_ = false, emission_stopped_ = false;
 };
 
 }  // namespace sph

@@ -42,6 +42,11 @@ bool draw_panel(PanelModel& m) {
   ImGui::Text("t = %.4f s   dt = %.2e s", m.sim_time, m.dt);
   ImGui::Text("simulated / real time: %.3f", m.realtime_ratio);
   ImGui::Text("mean density error: %.2f %%", 100.0 * m.density_error);
+  for (const std::string& text : m.messages) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+    ImGui::TextWrapped("%s", text.c_str());
+    ImGui::PopStyleColor();
+  }
   if (ImGui::CollapsingHeader("ms per step by phase")) {
     for (int p = 0; p < int(Phase::Count); ++p)
       ImGui::Text("%-11s %7.3f", phase_name(Phase(p)), m.phase_per_step.seconds[std::size_t(p)]);

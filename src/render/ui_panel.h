@@ -29,6 +29,7 @@ struct PanelModel {
   PhaseTimes phase_per_step;  // ms per step by phase, averaged over the last frames
   ColourRange legend;
   std::vector<std::string> backends;
+  std::vector<std::string> messages;  // what the demo skipped or stopped (scenes, overrides, emission)
 };
 
 // Draws the panel; returns true when a parameter was edited.
