@@ -82,8 +82,8 @@ struct TimeStepSpec {
 // the relaxed positions at rest.
 struct RelaxationSpec {
   bool enabled = false;
-  double viscosity = 0.0;        // Pa s, Mueller viscosity during relaxation; 0 = rho0 * 0.03 h c0, a tenth
-                                 // of what would make the viscous step limit equal the sound step limit
+  double viscosity = 0.0;        // Pa s, Mueller viscosity during relaxation; 0 = rho0 * 0.03 h c0, about a
+                                 // fifth of what would make the viscous step limit equal the sound step limit
   double speed_threshold = 0.0;  // m/s; 0 = 1e-3 c0
   long max_steps = 5000;
 };
