@@ -232,8 +232,8 @@ SPH_HD inline void collide_quadric(const Shape& s, Vec3 x0, Vec3& x, Vec3& v, fl
   const Vec3 step = x - x0;
   const float C = quadric_value(s.q, x0);
   float t = 0.0f;
-  if (C >= 0.0f &&
-      quadratic_entry(quadric_form(s.q, step, 0.0f, step, 0.0f), 2.0f * quadric_form(s.q, step, 0.0f, x0, 1.0f), C, t)) {
+  const float A = quadric_form(s.q, step, 0.0f, step, 0.0f), B = 2.0f * quadric_form(s.q, step, 0.0f, x0, 1.0f);
+  if (C >= 0.0f && quadratic_entry(A, B, C, t)) {
     const Vec3 e = x0 + t * step;
     const Vec3 grad = quadric_gradient(s.q, e);
     const float gl = length(grad);

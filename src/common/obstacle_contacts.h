@@ -12,19 +12,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "boundaries.h"
 #include "params.h"
 
 namespace sph {
 
 namespace contacts_detail {
-inline float axis_value(const Vec3& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
-inline float& axis_value(Vec3& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
 constexpr float kBehindWall = 1e30f;  // reach through a wall: the whole half-space behind it is solid
 
 // Whether box b's face across `axis` covers box a's face across the same axis (the other two axes).
 inline bool face_covered(const Shape& a, const Shape& b, int axis, float gap) {
   for (int j = 0; j < 3; ++j)
-    if (j != axis && (axis_value(a.a, j) < axis_value(b.a, j) - gap || axis_value(a.b, j) > axis_value(b.b, j) + gap))
+    if (j != axis && (axis_of(a.a, j) < axis_of(b.a, j) - gap || axis_of(a.b, j) > axis_of(b.b, j) + gap))
       return false;
   return true;
 }
@@ -37,22 +36,23 @@ inline void seal_obstacle_contacts(Shape* shapes, int32_t count, float gap) {
     Shape& ob = shapes[o];
     if (ob.type != ShapeType::Box || ob.keep_inside) continue;
     for (int axis = 0; axis < 3; ++axis) {
-      const float lo = axis_value(ob.a, axis), hi = axis_value(ob.b, axis);
-      float& reach_lo = axis_value(ob.reach_lo, axis);
-      float& reach_hi = axis_value(ob.reach_hi, axis);
+      const float lo = axis_of(ob.a, axis), hi = axis_of(ob.b, axis);
+      float& reach_lo = axis_of(ob.reach_lo, axis);
+      float& reach_hi = axis_of(ob.reach_hi, axis);
       for (int32_t w = 0; w < count; ++w) {
         const Shape& other = shapes[w];
         if (w == o) continue;
         if (other.type == ShapeType::Box && other.keep_inside) {  // container walls (no ceiling when open)
-          if (lo <= axis_value(other.a, axis) + gap) reach_lo = kBehindWall;
-          if (hi >= axis_value(other.b, axis) - gap && !(axis == 1 && other.open_top)) reach_hi = kBehindWall;
+          if (lo <= axis_of(other.a, axis) + gap) reach_lo = kBehindWall;
+          if (hi >= axis_of(other.b, axis) - gap && !(axis == 1 && other.open_top)) reach_hi = kBehindWall;
         } else if (other.type == ShapeType::Plane) {  // a plane whose normal is this axis
-          const float nc = axis_value(other.b, axis), at = axis_value(other.a, axis);
+          const float nc = axis_of(other.b, axis), at = axis_of(other.a, axis);
           if (nc > 0.9999f && lo <= at + gap) reach_lo = kBehindWall;
           if (nc < -0.9999f && hi >= at - gap) reach_hi = kBehindWall;
         } else if (other.type == ShapeType::Box && face_covered(ob, other, axis, gap)) {  // stacked obstacles
-          if (std::fabs(lo - axis_value(other.b, axis)) <= gap) reach_lo = std::max(reach_lo, lo - axis_value(other.a, axis));
-          if (std::fabs(hi - axis_value(other.a, axis)) <= gap) reach_hi = std::max(reach_hi, axis_value(other.b, axis) - hi);
+          const float other_lo = axis_of(other.a, axis), other_hi = axis_of(other.b, axis);
+          if (std::fabs(lo - other_hi) <= gap) reach_lo = std::max(reach_lo, lo - other_lo);
+          if (std::fabs(hi - other_lo) <= gap) reach_hi = std::max(reach_hi, other_hi - hi);
         }
       }
     }

@@ -79,7 +79,8 @@ void Simulation::relax(const BackendFactory& factory) {
 void Simulation::set_constants(const SimConstants& constants) {
   setup_.constants = constants;
   double c_max = 0.0;
-  for (int32_t f = 0; f < constants.num_fluids; ++f) c_max = std::max(c_max, double(constants.fluids[f].speed_of_sound));
+  for (int32_t f = 0; f < constants.num_fluids; ++f)
+    c_max = std::max(c_max, double(constants.fluids[f].speed_of_sound));
   setup_.max_speed_of_sound = c_max;
   setup_.viscous_rate = viscous_rate(constants, setup_.spacing, setup_.h, setup_.lattice_density);
   backend_->set_constants(constants);
