@@ -12,6 +12,10 @@
 
 namespace sph {
 
+// eps^2 / h^2 of the pair terms that divide by r^2 + eps^2 (Morris and artificial viscosity): keeps them finite
+// as r -> 0.
+constexpr float kPairEps2 = 0.01f;
+
 // Pressure (and near pressure) pair term, returned as the scalar s with a_a += s * grad W; takes the
 // inverse densities so the pair loop divides once per pair.
 // Monaghan symmetric, thesis eq. 2.18 divided by rho_a: -m_b (P_a / rho_a^2 + P_b / rho_b^2).
@@ -31,7 +35,7 @@ struct PairSide {  // what the pair needs of one side
 SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const PairSide& a, const PairSide& b, Vec3 xab,
                                                   float r2, Vec3 vab, Vec3& acc) {
   const KernelCoeffs& k = c.kernel;
-  const float eps2 = 0.01f * k.h2;  // keeps Morris and artificial viscosity finite as r -> 0
+  const float eps2 = kPairEps2 * k.h2;
   const float r = sqrtf(r2);
   const float inv_r = 1.0f / r;
   const FluidConstants& fa = *a.fluid;

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include "frame_reader.h"
+#include "obstacle_contacts.h"
+#include "viscous_limit.h"
 
 namespace sph {
 
@@ -150,11 +152,11 @@ Setup create_setup(const Scene& scene, double run_time) {
     if (f.surface_tension > 0.0) c.surface_tension_enabled = 1;
     if (f.xsph > 0.0) c.xsph_enabled = 1;
     s.max_speed_of_sound = std::max(s.max_speed_of_sound, f.speed_of_sound);
-    if (scene.viscosity == ViscosityModel::Mueller || scene.viscosity == ViscosityModel::Morris)
-      s.max_kinematic_viscosity = std::max(s.max_kinematic_viscosity, f.viscosity / f.rest_density);
   }
+  s.viscous_rate = viscous_rate(c, s.spacing, s.h, s.lattice_density);
   c.num_shapes = int32_t(scene.boundaries.size());
   for (std::size_t i = 0; i < scene.boundaries.size(); ++i) c.shapes[i] = scene.boundaries[i].shape;
+  seal_obstacle_contacts(c.shapes, c.num_shapes, float(0.5 * s.spacing));
 
   // Count first, so an absurd resolution is refused before anything large is allocated.
   double instant = 0.0;

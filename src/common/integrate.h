@@ -60,7 +60,9 @@ SPH_HD inline void integrate_correct(Integrator m, V& x, V& v, const V& a, S dt)
 }
 
 // Particle-level wrappers: inlet particles (age < 0) move kinematically with their emission velocity.
+// predict records where the step starts: the boundaries test the whole segment moved (boundaries.h).
 SPH_HD inline void predict_particle(const SimConstants& c, const ParticleView& p, int32_t i, float dt) {
+  p.pos_start[i] = p.pos[i];
   if (p.age[i] < 0.0f) {
     p.vel_force[i] = p.vel[i];
     p.pos[i] = p.pos[i] + p.vel[i] * dt;

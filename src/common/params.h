@@ -64,6 +64,8 @@ struct Shape {
   Vec3 b;                // Box: max corner; Plane: unit normal (towards the fluid)
   float radius;          // Sphere
   float q[16];           // Quadric: row-major 4x4 symmetric matrix
+  Vec3 reach_lo;         // Box obstacle: how far its solid reaches below a and above b through faces that lie
+  Vec3 reach_hi;         // on a wall or another obstacle (obstacle_contacts.h); 0 = the box itself
 };
 
 // Uniform-grid geometry. The grid covers the domain; positions outside it are clamped into the border

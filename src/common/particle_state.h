@@ -26,7 +26,7 @@ struct Spawn {
 #define SPH_PARTICLE_FIELDS(X)                                                                     \
   X(Vec3, pos) X(Vec3, vel) X(Vec3, vel_force) X(Vec3, acc) X(Vec3, xsph_dv) X(float, density)      \
   X(float, near_density) X(float, pressure) X(float, near_pressure) X(float, age) X(uint8_t, fluid) \
-  X(int32_t, id)
+  X(int32_t, id) X(Vec3, pos_start)
 
 struct ParticleState {
 #define SPH_DECLARE_FIELD(type, name) std::vector<type> name;
@@ -56,6 +56,7 @@ struct ParticleState {
     age[i] = s.age;
     fluid[i] = s.fluid;
     id[i] = s.id;
+    pos_start[i] = s.pos;
   }
 
   // Copies particle `from` of `src` into slot `to` of this state (used by reordering and removal).
@@ -69,12 +70,12 @@ struct ParticleState {
     return ParticleView{int32_t(size()), pos.data(),          vel.data(),      vel_force.data(),
                         acc.data(),      xsph_dv.data(),      density.data(),  near_density.data(),
                         pressure.data(), near_pressure.data(), age.data(),     fluid.data(),
-                        id.data()};
+                        id.data(),       pos_start.data()};
   }
 };
 
 // Bytes of host memory one particle needs in the reference back end (state, reorder copy, grid arrays):
 // used to refuse particle counts that cannot fit before allocating anything.
-constexpr std::size_t kBytesPerParticle = 2 * (5 * sizeof(Vec3) + 5 * sizeof(float) + 1 + 4) + 3 * 4;
+constexpr std::size_t kBytesPerParticle = 2 * (6 * sizeof(Vec3) + 5 * sizeof(float) + 1 + 4) + 3 * 4;
 
 }  // namespace sph

@@ -24,6 +24,7 @@ struct ParticleView {
   float* age;           // time since birth; < 0 while a jet particle is still in its inlet (kinematic)
   uint8_t* fluid;       // index into SimConstants::fluids
   int32_t* id;          // stable particle identity, survives reordering
+  Vec3* pos_start;      // position at the start of the step: boundaries test the segment moved (boundaries.h)
 };
 
 struct GridView {

@@ -70,7 +70,10 @@ struct TimeStepSpec {
   double cfl_velocity = 0.4;      // dt <= C_v h / v_max (thesis 2.3.5)
   double cfl_acceleration = 0.25; // dt <= C_a sqrt(h / a_max)
   double cfl_sound = 0.4;         // dt <= C_c h / (c0 + v_max)
-  double cfl_viscosity = 0.125;   // dt <= C_nu h^2 / nu
+  // dt <= C_nu 2 / lambda_max, lambda_max the fastest rate of the discrete viscous operator (viscous_limit.h).
+  // 0.5 keeps lambda dt <= 1: the fastest mode decays without changing sign, and the margin of 2 covers the
+  // lower densities at a free surface (up to 1.34 lambda_max on a small cube, tests/test_timestep.cpp).
+  double cfl_viscosity = 0.5;
 };
 
 // Relaxation phase (thesis 4.1.6): before time starts the fluid moves without gravity and with a large
@@ -79,8 +82,8 @@ struct TimeStepSpec {
 // the relaxed positions at rest.
 struct RelaxationSpec {
   bool enabled = false;
-  double viscosity = 0.0;        // Pa s, Mueller viscosity during relaxation; 0 = rho0 * 0.03 h c0, a tenth
-                                 // of what would make the viscous step limit equal the sound step limit
+  double viscosity = 0.0;        // Pa s, Mueller viscosity during relaxation; 0 = rho0 * 0.03 h c0, about a
+                                 // fifth of what would make the viscous step limit equal the sound step limit
   double speed_threshold = 0.0;  // m/s; 0 = 1e-3 c0
   long max_steps = 5000;
 };

@@ -468,7 +468,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
     t.cfl_velocity = tr.number("cfl_velocity", t.cfl_velocity, 0.0, 10.0, true);
     t.cfl_acceleration = tr.number("cfl_acceleration", t.cfl_acceleration, 0.0, 10.0, true);
     t.cfl_sound = tr.number("cfl_sound", t.cfl_sound, 0.0, 10.0, true);
-    t.cfl_viscosity = tr.number("cfl_viscosity", t.cfl_viscosity, 0.0, 10.0, true);
+    t.cfl_viscosity = tr.number("cfl_viscosity", t.cfl_viscosity, 0.0, 1.0, true);  // 1: the stability bound
     tr.finish();
   }
 

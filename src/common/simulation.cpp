@@ -43,13 +43,12 @@ void Simulation::relax(const BackendFactory& factory) {
   SimConstants rc = setup_.constants;
   rc.gravity = Vec3{0.0f, 0.0f, 0.0f};
   rc.viscosity = ViscosityModel::Mueller;
-  double nu_max = 0.0;
   for (int32_t f = 0; f < rc.num_fluids; ++f) {
     FluidConstants& fc = rc.fluids[f];
     const double mu = spec.viscosity > 0.0 ? spec.viscosity : fc.rest_density * 0.03 * setup_.h * fc.speed_of_sound;
     fc.viscosity = float(mu);
-    nu_max = std::max(nu_max, mu / fc.rest_density);
   }
+  const double rate = viscous_rate(rc, setup_.spacing, setup_.h, setup_.lattice_density);
   relaxation_.ran = true;
   relaxation_.threshold = spec.speed_threshold > 0.0 ? spec.speed_threshold : 1e-3 * setup_.max_speed_of_sound;
   std::unique_ptr<Backend> relaxing = factory(rc);
@@ -59,7 +58,7 @@ void Simulation::relax(const BackendFactory& factory) {
   TimeStepSpec ts = scene_.time_step;
   int quiet = 0;
   while (relaxation_.steps < spec.max_steps) {
-    const StepChoice choice = choose_time_step(ts, setup_.h, setup_.max_speed_of_sound, nu_max, d.max_speed, d.max_accel);
+    const StepChoice choice = choose_time_step(ts, setup_.h, setup_.max_speed_of_sound, rate, d.max_speed, d.max_accel);
     relaxing->step(float(choice.dt));
     ++relaxation_.steps;
     d = relaxing->diagnose();
@@ -83,14 +82,11 @@ void Simulation::relax(const BackendFactory& factory) {
 
 void Simulation::set_constants(const SimConstants& constants) {
   setup_.constants = constants;
-  double c_max = 0.0, nu_max = 0.0;
-  for (int32_t f = 0; f < constants.num_fluids; ++f) {
+  double c_max = 0.0;
+  for (int32_t f = 0; f < constants.num_fluids; ++f)
     c_max = std::max(c_max, double(constants.fluids[f].speed_of_sound));
-    if (constants.viscosity == ViscosityModel::Mueller || constants.viscosity == ViscosityModel::Morris)
-      nu_max = std::max(nu_max, double(constants.fluids[f].viscosity) / constants.fluids[f].rest_density);
-  }
   setup_.max_speed_of_sound = c_max;
-  setup_.max_kinematic_viscosity = nu_max;
+  setup_.viscous_rate = viscous_rate(constants, setup_.spacing, setup_.h, setup_.lattice_density);
   backend_->set_constants(constants);
 }
 
@@ -105,7 +101,7 @@ void Simulation::switch_backend(const BackendFactory& factory) {
 
 void Simulation::advance() {
   const StepChoice choice = choose_time_step(scene_.time_step, setup_.h, setup_.max_speed_of_sound,
-                                             setup_.max_kinematic_viscosity, diag_.max_speed, diag_.max_accel);
+                                             setup_.viscous_rate, diag_.max_speed, diag_.max_accel);
   const double dt = choice.dt;
   backend_->step(float(dt));
   for (JetEmitter& jet : setup_.jets) {

@@ -65,7 +65,8 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(near_pressure.data()),
                         thrust::raw_pointer_cast(age.data()),
                         thrust::raw_pointer_cast(fluid.data()),
-                        thrust::raw_pointer_cast(id.data())};
+                        thrust::raw_pointer_cast(id.data()),
+                        thrust::raw_pointer_cast(pos_start.data())};
   }
 };
 
