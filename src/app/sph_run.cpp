@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,7 @@ int run(const Options& o) {
                     : std::string())
             << "run: " << (by_steps ? std::to_string(o.steps) + " steps" : std::to_string(run_time) + " s simulated")
             << ", output: " << o.out << "\n";
+  for (const std::string& line : st.report) std::cout << "setup: " << line << "\n";
   std::cout.flush();
 
   int frame = 0;
@@ -218,6 +220,9 @@ int main(int argc, char** argv) {
   }
   try {
     return run(o);
+  } catch (const std::bad_alloc&) {  // set-up reports its own estimate; this is what remains (a back end)
+    std::cerr << "error: out of memory while setting up or running " << o.scene << "; lower the resolution\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

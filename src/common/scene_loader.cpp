@@ -348,7 +348,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   s.source = source;
   ObjectReader r(root, source, "");
   r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "integrator",
-           "time_step", "gravity", "domain", "run", "limits", "relaxation"});
+           "time_step", "gravity", "domain", "run", "limits", "relaxation", "on_overlap"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -446,6 +446,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   }
 
   s.gravity = r.vec3("gravity", s.gravity, 1e4);
+  s.overlap_error = r.choice<bool>("on_overlap", false, {{"remove", false}, {"error", true}});
 
   if (r.has("domain")) {
     ObjectReader dr(r.raw("domain"), source, "domain");
