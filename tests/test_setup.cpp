@@ -179,10 +179,14 @@ TEST_CASE("setup: a 0.55 m column at 0.04 m starts half a spacing off the floor,
 TEST_CASE("setup: a sphere emitter has no stray particles at its poles", "[setup]") {
   const double d = 0.01;
   const auto radius = GENERATE(0.03, 0.0305, 0.041, 0.05);
-  const auto centre = GENERATE(0.0, 0.003);
-  const std::string emitters = R"([{ "type": "sphere", "center": [)" + std::to_string(centre) + R"(, 0, 0], "radius": )" +
+  // The container anchors the lattice at -0.095 m: centre 0 lies between lattice points, 0.005 on one (then
+  // a radius just above a whole number of spacings puts single points at the six poles).
+  const auto centre = GENERATE(0.0, 0.005, 0.008);
+  const std::string emitters = R"([{ "type": "sphere", "center": [)" + std::to_string(centre) + ", " +
+                               std::to_string(centre) + ", " + std::to_string(centre) + R"(], "radius": )" +
                                std::to_string(radius) + " }]";
-  const sph::Setup s = sph::create_setup(sph::parse_scene(rest_scene(emitters, "[]", d), "sphere.json"), 1.0);
+  const std::string box = R"([{ "type": "box", "min": [-0.1, -0.1, -0.1], "max": [0.1, 0.1, 0.1] }])";
+  const sph::Setup s = sph::create_setup(sph::parse_scene(rest_scene(emitters, box, d), "sphere.json"), 1.0);
   INFO("radius " << radius << " m, centre x " << centre << " m, " << s.particles.size() << " particles");
   for (std::size_t i = 0; i < s.particles.size(); ++i) REQUIRE(lattice_neighbours(s.particles, i, d) >= 3);
   // Volume within one layer of the sphere's: |N d^3 - 4/3 pi R^3| <= 4 pi R^2 d.

@@ -17,6 +17,7 @@
 
 #include "../common/frame_writer.h"
 #include "../common/metrics.h"
+#include "../common/setup_budget.h"
 #include "../common/simulation.h"
 #include "backends.h"
 
@@ -62,6 +63,16 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+// Set-up turns its own std::bad_alloc into "out of memory" with its estimate; the back end allocates its
+// arrays after set-up, so where those do not fit, set-up is repeated for its estimate (it fitted before).
+Simulation make_simulation(const Scene& scene, const BackendFactory& factory, double run_time) {
+  try {
+    return Simulation(scene, factory, run_time);
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error(out_of_memory_text(scene, create_setup(scene, run_time).expected_particles));
+  }
+}
+
 int run(const Options& o) {
   Scene scene = load_scene(o.scene, o.sets);
   const double run_time = o.time > 0.0 ? o.time : scene.run_time;
@@ -79,7 +90,7 @@ int run(const Options& o) {
   csv << "time,dt,step,kinetic_energy,density_error_mean,density_error_max,v_max,front_x,top_y,height_at_x0,particles,"
          "wall_ms\n";
 
-  Simulation sim(scene, factory, run_time);
+  Simulation sim = make_simulation(scene, factory, run_time);
   const Setup& st = sim.setup();
   std::cout << "scene: " << scene.name << " (" << o.scene << ")\n"
             << "backend: " << sim.backend().name() << "\n"
@@ -220,8 +231,8 @@ int main(int argc, char** argv) {
   }
   try {
     return run(o);
-  } catch (const std::bad_alloc&) {  // set-up reports its own estimate; this is what remains (a back end)
-    std::cerr << "error: out of memory while setting up or running " << o.scene << "; lower the resolution\n";
+  } catch (const std::bad_alloc&) {  // set-up reports its own estimate (make_simulation); this is a later step
+    std::cerr << "error: out of memory while running " << o.scene << "; lower the resolution\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -76,8 +76,8 @@ struct ParticleState {
 // Bytes of memory one particle needs at peak, used to refuse particle counts that cannot fit before
 // allocating anything. The fields above take 85 bytes; the state, its reorder copy, the downloaded copy,
 // the grid's index arrays and the vectors' growth make about six times that. Measured peak resident size
-// per particle of scenes/dam_break.json between 16,000 and 128,000 particles (/usr/bin/time -v, 5 steps):
-// 468 bytes on cpu, 559 on host; 510 is within 10% of both.
+// per particle of scenes/dam_break.json (/usr/bin/time -v, 5 steps): 468 bytes on cpu and 559 on host
+// between 16,000 and 128,000 particles, 443 and 531 (peak / particles) at 432,000; 510 is within 15%.
 constexpr std::size_t kParticleFieldBytes = 5 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
 constexpr std::size_t kBytesPerParticle = 6 * kParticleFieldBytes;
 

@@ -1,5 +1,6 @@
 #include "setup_budget.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,9 +16,15 @@ namespace sph {
 
 namespace {
 
-double physical_memory_bytes() {
+// Memory a run may fill: half of this machine's memory, or less where the process has an address-space
+// limit (ulimit -v; 80% of it, the rest holds the program, its libraries and thread stacks).
+double usable_memory_bytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? double(pages) * double(page) : 8.0 * double(1L << 30);
+  double bytes = 0.5 * (pages > 0 && page > 0 ? double(pages) * double(page) : 8.0 * double(1L << 30));
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    bytes = std::min(bytes, 0.8 * double(limit.rlim_cur));
+  return bytes;
 }
 
 std::string number_text(double x) {
@@ -61,7 +68,7 @@ std::string count_text(double n) {
 }
 
 double particle_budget(const Scene& scene) {
-  return std::min(scene.max_particles, 0.5 * physical_memory_bytes() / double(kBytesPerParticle));
+  return std::min(scene.max_particles, usable_memory_bytes() / double(kBytesPerParticle));
 }
 
 void check_particle_budget(const Scene& scene, double count, const std::string& what, const std::string& advice) {
@@ -73,11 +80,12 @@ void check_particle_budget(const Scene& scene, double count, const std::string& 
     throw SceneError(os.str());
   }
   const double bytes = count * double(kBytesPerParticle);
-  const double avail = 0.5 * physical_memory_bytes();
+  const double avail = usable_memory_bytes();
   if (bytes > avail) {
     os << scene.source << ": " << what << " needs about " << count_text(count) << " particles, about "
        << number_text(bytes / 1e9) << " GB (estimate, " << kBytesPerParticle
-       << " bytes each), more than half of this machine's memory (" << number_text(2.0 * avail / 1e9) << " GB); "
+       << " bytes each), more than the " << number_text(avail / 1e9)
+       << " GB this run may use (half of this machine's memory, or 80% of the process's address-space limit); "
        << advice;
     throw SceneError(os.str());
   }

@@ -13,8 +13,8 @@ namespace sph {
 // A count for a message: "16000", "1.25e+11", or "more than 1e18" (never an overflowed integer).
 std::string count_text(double n);
 
-// Throws SceneError naming the file when `count` particles exceed limits.max_particles or half of this
-// machine's memory at kBytesPerParticle each. what: where they come from ("<what> needs about N
+// Throws SceneError naming the file when `count` particles exceed limits.max_particles or, at
+// kBytesPerParticle each, half of this machine's memory (less under an address-space limit, ulimit -v). what: where they come from ("<what> needs about N
 // particles"); advice: what to change ("lower the resolution").
 void check_particle_budget(const Scene& scene, double count, const std::string& what,
                            const std::string& advice = "lower the resolution");
@@ -22,7 +22,7 @@ void check_particle_budget(const Scene& scene, double count, const std::string& 
 // "out of memory: N particles need about X GB (estimate)", for a std::bad_alloc during set-up.
 std::string out_of_memory_text(const Scene& scene, double count);
 
-// Most particles one set-up step may create: limits.max_particles, and what half the memory holds.
+// Most particles one set-up step may create: limits.max_particles, or fewer where memory holds fewer.
 double particle_budget(const Scene& scene);
 
 // Checks every quantity the back ends keep in float (kernel coefficients, h, h^2, particle masses,
