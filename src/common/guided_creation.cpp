@@ -84,20 +84,21 @@ GridGeometry make_grid(const Scene& scene, const ParticleState& ps, const std::v
     hi[i] += 2.0 * h;
   }
   // Cells at least h / reach wide; coarser when the domain would need too many cells, up to h (each
-  // search then visits 8 times the candidates it was designed for); beyond that the scene is refused.
+  // search then tests about 8 times the candidates it was designed for); beyond that the scene is refused.
   const int reach = 2;
-  const double max_cells = std::max(1.0 * (1 << 22), 16.0 * expected);
+  // At most 2^30 cells: cell indices and cell_start are int32.
+  const double max_cells = std::min(std::max(1.0 * (1 << 22), 16.0 * expected), 1.0 * (1 << 30));
   double cell = h / reach;
   auto cells = [&](int axis) { return std::max(1.0, std::ceil((hi[axis] - lo[axis]) / cell)); };
   auto total = [&] { return cells(0) * cells(1) * cells(2); };
   for (int grow_steps = 0; total() > max_cells && grow_steps < 100; ++grow_steps) cell *= 1.1;
-  if (total() > max_cells || cell > reach * h) {
+  if (total() > max_cells || cell > h) {
     std::ostringstream os;
     cell = h / reach;
     os << scene.source << ": the simulation domain " << metres(hi[0] - lo[0]) << " x " << metres(hi[1] - lo[1]) << " x "
        << metres(hi[2] - lo[2]) << " m (with a band of 2 h) needs " << count_text(std::round(total()))
        << " grid cells of h / 2 = " << metres(cell) << " m, more than the " << count_text(max_cells)
-       << " this scene may use (16 per particle, at least 4194304); make the domain (\"domain\" or the box "
+       << " this scene may use (16 per particle, at least 4194304, at most 2^30); make the domain (\"domain\" or the box "
           "container) fit the fluid more closely, or coarsen the resolution";
     throw SceneError(os.str());
   }
@@ -247,6 +248,9 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
       throw SceneError(scene.source + ": two jets of fluid \"" + scene.fluids[std::size_t(e.fluid)].name +
                        "\" have different lifetimes; particle lifetime is a property of the fluid");
     fc.lifetime = float(e.lifetime);
+    s.report.push_back(label + ": " + std::to_string(s.jets.back().section_size()) + " particles per layer, inlet " +
+                       metres(inlet) + " m (" + std::to_string(s.jets.back().inlet_layers()) + " layers" +
+                       (e.start > 0.0 ? ", not prefilled: the jet starts at " + metres(e.start) + " s)" : ", prefilled)"));
   }
   check_jet_inlets(scene, s.jets, jet_index);
   double steady = estimate;
