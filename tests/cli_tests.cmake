@@ -71,6 +71,27 @@ sph_cli_test(too_many_particles
   --exit 1 --max-seconds 10 --stderr "limits.max_particles"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/thesis_perf_cube.json --set resolution.particles_across=5000
      --out ${SPH_CLI_OUT}/too_many_particles)
+# Memory exhaustion before any check (issue 10): refused at once with the estimate, nothing allocated.
+sph_cli_test(jet_section_exhausts_memory
+  --exit 1 --max-seconds 5 --stderr "water_jet.json" --stderr "emitters.0 (jet)" --stderr "needs about 10000600009 particles"
+  --stderr "limits.max_particles"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/water_jet.json --set resolution.particles_across=100000
+     --out ${SPH_CLI_OUT}/jet_section_exhausts_memory)
+sph_cli_test(jet_step_exhausts_memory
+  --exit 1 --max-seconds 5 --stderr "emitters.0 (jet): one time step" --stderr "needs about"
+  --stderr "time_step.dt"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/water_jet.json --set emitters.0.speed=1e4 --set time_step.dt=10
+     --out ${SPH_CLI_OUT}/jet_step_exhausts_memory)
+# Under an address-space limit (ulimit -v, 600 MB) two million particles (about 1 GB) are refused at
+# set-up with the estimate, instead of a std::bad_alloc in the back end.
+add_test(NAME cli_memory_limit
+         COMMAND bash -c "ulimit -v 600000 && exec bash \"$0\" \"$@\""
+                 ${SPH_CLI_CHECK} --exit 1 --max-seconds 5 --stderr "2000000 particles" --stderr "GB (estimate"
+                 --stderr "address-space limit"
+                 -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set resolution.particles_across=100
+                    --out ${SPH_CLI_OUT}/memory_limit
+         WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(cli_memory_limit PROPERTIES TIMEOUT 120 LABELS cli)
 
 # --- bad options ---------------------------------------------------------------------------------------
 sph_cli_test(unknown_backend

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -21,6 +22,7 @@
 #include "../common/frame_reader.h"
 #include "../common/frame_writer.h"
 #include "../common/metrics.h"
+#include "../common/setup_budget.h"
 #include "../common/simulation.h"
 #include "backends.h"
 #include "metrics_file.h"
@@ -99,6 +101,16 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+// Set-up turns its own std::bad_alloc into "out of memory" with its estimate; the back end allocates its
+// arrays after set-up, so where those do not fit, set-up is repeated for its estimate (it fitted before).
+Simulation make_simulation(const Scene& scene, const BackendFactory& factory, double run_time, const Frame* restart) {
+  try {
+    return Simulation(scene, factory, run_time, restart);
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error(out_of_memory_text(scene, create_setup(scene, run_time).expected_particles));
+  }
+}
+
 double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
 }
@@ -124,6 +136,7 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
                         : std::string())
             << "run: " << (by_steps ? std::to_string(o.steps) + " steps" : std::to_string(run_time) + " s simulated")
             << ", output: " << o.out << "\n";
+  for (const std::string& line : st.report) std::cout << "setup: " << line << "\n";
   std::cout.flush();
 }
 
@@ -177,7 +190,7 @@ int run(const Options& o) {
   // A continued run keeps the rows of metrics.csv up to its frame's step and appends after them.
   MetricsFile csv((fs::path(o.out) / "metrics.csv").string(), kMetricsHeader, restart ? restart->info.step : -1);
 
-  Simulation sim(scene, factory, run_time, restart.get());
+  Simulation sim = make_simulation(scene, factory, run_time, restart.get());
   check_initial_state(scene, sim);
   print_setup(o, scene, sim, by_steps, run_time, restart.get());
   const Setup& st = sim.setup();
@@ -340,6 +353,9 @@ int main(int argc, char** argv) {
   } catch (const OutputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kOutputFailed;
+  } catch (const std::bad_alloc&) {  // set-up reports its own estimate (make_simulation); this is a later step
+    std::cerr << "error: out of memory while running " << o.scene << "; lower the resolution\n";
+    return kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kBadInput;

@@ -2,34 +2,151 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace sph {
 
-std::vector<Vec3d> fill_emitter(const EmitterSpec& e, double d) {
-  std::vector<Vec3d> pts;
-  if (e.type == EmitterType::Box) {
-    long n[3];
-    double start[3];
-    for (int i = 0; i < 3; ++i) {
-      const double len = e.max[i] - e.min[i];
-      n[i] = std::max(1L, std::lround(len / d));
-      start[i] = e.min[i] + 0.5 * (len - double(n[i]) * d) + 0.5 * d;  // centred, half a spacing from walls
+namespace {
+
+// A lattice index from a coordinate already divided by the spacing, clamped so that absurd scenes give
+// huge (and refused) counts instead of an overflowing conversion.
+long to_index(double x) { return long(std::max(-1e18, std::min(1e18, x))); }
+
+// Lattice points are tested against box faces with this tolerance (in spacings), so a face that lies on
+// a half-integer position, as every face aligned with the anchoring container does, is never decided by
+// rounding.
+constexpr double kIndexTolerance = 1e-9;
+
+}  // namespace
+
+Lattice make_lattice(const Scene& scene, double spacing) {
+  Lattice l;
+  l.spacing = spacing;
+  bool anchored = false;
+  for (const BoundarySpec& b : scene.boundaries)
+    if (b.shape.type == ShapeType::Box && b.shape.keep_inside) {
+      l.origin = {double(b.shape.a.x), double(b.shape.a.y), double(b.shape.a.z)};
+      anchored = true;
+      break;
     }
-    pts.reserve(std::size_t(n[0] * n[1] * n[2]));
-    for (long k = 0; k < n[2]; ++k)
-      for (long j = 0; j < n[1]; ++j)
-        for (long i = 0; i < n[0]; ++i) pts.push_back({start[0] + i * d, start[1] + j * d, start[2] + k * d});
-  } else if (e.type == EmitterType::Sphere) {
-    const long n = long(std::ceil(e.radius / d));
-    for (long k = -n; k <= n; ++k)
-      for (long j = -n; j <= n; ++j)
-        for (long i = -n; i <= n; ++i) {
-          const double x = i * d, y = j * d, z = k * d;
-          if (x * x + y * y + z * z <= e.radius * e.radius)
-            pts.push_back({e.center[0] + x, e.center[1] + y, e.center[2] + z});
+  if (!anchored)
+    for (const EmitterSpec& e : scene.emitters) {
+      if (e.type == EmitterType::Box) l.origin = e.min;
+      else if (e.type == EmitterType::Sphere) l.origin = {e.center[0] - e.radius, e.center[1] - e.radius, e.center[2] - e.radius};
+      else continue;
+      break;
+    }
+  for (double& o : l.origin) o += 0.5 * spacing;
+  return l;
+}
+
+double IndexBox::count() const {
+  double n = 1.0;
+  for (int a = 0; a < 3; ++a) n *= std::max(0.0, double(hi[a]) - double(lo[a]) + 1.0);
+  return n;
+}
+
+IndexBox emitter_index_box(const EmitterSpec& e, const Lattice& l) {
+  IndexBox b;
+  for (int a = 0; a < 3; ++a) {
+    if (e.type == EmitterType::Box) {
+      // Cell centres in [min, max): first index at or above min, last index below max.
+      b.lo[a] = to_index(std::ceil((e.min[a] - l.origin[a]) / l.spacing - kIndexTolerance));
+      b.hi[a] = to_index(std::ceil((e.max[a] - l.origin[a]) / l.spacing - kIndexTolerance)) - 1;
+    } else if (e.type == EmitterType::Sphere) {
+      b.lo[a] = to_index(std::floor((e.center[a] - e.radius - l.origin[a]) / l.spacing));
+      b.hi[a] = to_index(std::ceil((e.center[a] + e.radius - l.origin[a]) / l.spacing));
+    }
+  }
+  return b;
+}
+
+EmitterRegion::EmitterRegion(const EmitterSpec& e, const Lattice& lattice)
+    : spec_(e), lattice_(lattice), box_(emitter_index_box(e, lattice)) {
+  if (spec_.type != EmitterType::Sphere || box_.count() <= 0.0) return;
+  mask_.assign(std::size_t(box_.count()), 0);
+  for (long k = box_.lo[2]; k <= box_.hi[2]; ++k)
+    for (long j = box_.lo[1]; j <= box_.hi[1]; ++j)
+      for (long i = box_.lo[0]; i <= box_.hi[0]; ++i) mask_[mask_index(i, j, k)] = strictly_inside(i, j, k);
+  // Peel points with fewer than 3 of their 6 lattice neighbours in the fill until none is left: a point
+  // held by one or two neighbours only (the poles of a sphere whose radius is near a whole number of
+  // spacings) has no support in the fluid and is flung off by the first pressure step.
+  const long off[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (;;) {
+    std::vector<std::size_t> peel;
+    for (long k = box_.lo[2]; k <= box_.hi[2]; ++k)
+      for (long j = box_.lo[1]; j <= box_.hi[1]; ++j)
+        for (long i = box_.lo[0]; i <= box_.hi[0]; ++i) {
+          if (!contains(i, j, k)) continue;
+          int neighbours = 0;
+          for (const auto& o : off) neighbours += contains(i + o[0], j + o[1], k + o[2]) ? 1 : 0;
+          if (neighbours < 3) peel.push_back(mask_index(i, j, k));
+        }
+    if (peel.empty()) break;
+    for (std::size_t m : peel) mask_[m] = 0;
+  }
+}
+
+std::size_t EmitterRegion::mask_index(long i, long j, long k) const {
+  const std::size_t nx = std::size_t(box_.hi[0] - box_.lo[0] + 1), ny = std::size_t(box_.hi[1] - box_.lo[1] + 1);
+  return (std::size_t(k - box_.lo[2]) * ny + std::size_t(j - box_.lo[1])) * nx + std::size_t(i - box_.lo[0]);
+}
+
+bool EmitterRegion::strictly_inside(long i, long j, long k) const {
+  const Vec3d p = lattice_.point(i, j, k);
+  double r2 = 0.0;
+  for (int a = 0; a < 3; ++a) r2 += (p[a] - spec_.center[a]) * (p[a] - spec_.center[a]);
+  return r2 < spec_.radius * spec_.radius;
+}
+
+bool EmitterRegion::contains(long i, long j, long k) const {
+  const long idx[3] = {i, j, k};
+  for (int a = 0; a < 3; ++a)
+    if (idx[a] < box_.lo[a] || idx[a] > box_.hi[a]) return false;
+  return spec_.type == EmitterType::Box || (spec_.type == EmitterType::Sphere && mask_[mask_index(i, j, k)] != 0);
+}
+
+std::vector<FilledPoint> fill_instant_emitters(const std::vector<EmitterSpec>& emitters, const Lattice& lattice,
+                                               std::vector<EmitterFill>& stats) {
+  stats.assign(emitters.size(), EmitterFill{});
+  std::vector<EmitterRegion> regions;
+  std::vector<int> owner_index;  // scene index of each region
+  for (std::size_t e = 0; e < emitters.size(); ++e)
+    if (emitters[e].type != EmitterType::Jet) {
+      regions.emplace_back(emitters[e], lattice);
+      owner_index.push_back(int(e));
+    }
+  std::vector<FilledPoint> out;
+  for (std::size_t r = 0; r < regions.size(); ++r) {
+    const IndexBox& b = regions[r].box();
+    // Earlier regions whose index boxes meet this one: only they can already own one of its points.
+    std::vector<std::size_t> earlier;
+    for (std::size_t q = 0; q < r; ++q) {
+      const IndexBox& o = regions[q].box();
+      bool meet = true;
+      for (int a = 0; a < 3; ++a) meet = meet && o.lo[a] <= b.hi[a] && b.lo[a] <= o.hi[a];
+      if (meet) earlier.push_back(q);
+    }
+    EmitterFill& st = stats[std::size_t(owner_index[r])];
+    for (long k = b.lo[2]; k <= b.hi[2]; ++k)
+      for (long j = b.lo[1]; j <= b.hi[1]; ++j)
+        for (long i = b.lo[0]; i <= b.hi[0]; ++i) {
+          if (!regions[r].contains(i, j, k)) continue;
+          bool owned = false;
+          for (std::size_t q : earlier)
+            if (regions[q].contains(i, j, k)) {
+              owned = true;
+              break;
+            }
+          if (owned) {
+            ++st.shared;
+          } else {
+            ++st.created;
+            out.push_back({lattice.point(i, j, k), owner_index[r]});
+          }
         }
   }
-  return pts;
+  return out;
 }
 
 namespace {
@@ -42,8 +159,20 @@ Vec3d unit(const Vec3d& a) {
 }
 }  // namespace
 
-JetEmitter::JetEmitter(const EmitterSpec& spec, double spacing, double inlet_length, float density)
-    : spec_(spec), spacing_(spacing), inlet_length_(inlet_length), density_(density) {
+double JetEmitter::section_candidates(const EmitterSpec& spec, double spacing) {
+  const double n = std::ceil(spec.radius / spacing);
+  return (2.0 * n + 1.0) * (2.0 * n + 1.0);
+}
+
+JetEmitter::JetEmitter(const EmitterSpec& spec, double spacing, double inlet_length, float density,
+                       double max_particles, std::string source, int index)
+    : spec_(spec),
+      spacing_(spacing),
+      inlet_length_(inlet_length),
+      density_(density),
+      max_particles_(max_particles),
+      source_(std::move(source)),
+      index_(index) {
   // Orthonormal basis (u, w) of the section plane.
   const Vec3d& dir = spec_.direction;
   const Vec3d helper = std::fabs(dir[1]) < 0.9 ? Vec3d{0.0, 1.0, 0.0} : Vec3d{1.0, 0.0, 0.0};
@@ -53,7 +182,7 @@ JetEmitter::JetEmitter(const EmitterSpec& spec, double spacing, double inlet_len
   for (long j = -n; j <= n; ++j)
     for (long i = -n; i <= n; ++i) {
       // Cell-centred lattice: a square of side 2r holds exactly (2r / d)^2 points.
-      const double a = (i + 0.5) * spacing_, b = (j + 0.5) * spacing_;
+      const double a = (double(i) + 0.5) * spacing_, b = (double(j) + 0.5) * spacing_;
       const bool inside = spec_.section == JetSection::Circle
                               ? a * a + b * b <= spec_.radius * spec_.radius
                               : std::fabs(a) <= spec_.radius && std::fabs(b) <= spec_.radius;
@@ -62,10 +191,22 @@ JetEmitter::JetEmitter(const EmitterSpec& spec, double spacing, double inlet_len
   if (section_.empty()) section_.push_back({0.0, 0.0, 0.0});
 }
 
+long JetEmitter::inlet_layers() const {
+  return std::max(0L, long(std::ceil(inlet_length_ / spacing_ - kIndexTolerance)));
+}
+
+Vec3d JetEmitter::inlet_point(long layer, std::size_t s) const {
+  const double back = inlet_length_ - double(layer) * spacing_;  // distance still to travel before the outlet
+  const Vec3d& dir = spec_.direction;
+  const Vec3d& q = section_[s];
+  return {spec_.position[0] - dir[0] * back + q[0], spec_.position[1] - dir[1] * back + q[1],
+          spec_.position[2] - dir[2] * back + q[2]};
+}
+
 // One layer at distance `offset` past the start of the inlet.
 void JetEmitter::layer(double offset, std::vector<Spawn>& out, int32_t& next_id) const {
   const Vec3d& dir = spec_.direction;
-  const double back = inlet_length_ - offset;  // distance still to travel before the outlet
+  const double back = inlet_length_ - offset;
   const float age = float(-back / spec_.speed);
   const Vec3 vel{float(dir[0] * spec_.speed), float(dir[1] * spec_.speed), float(dir[2] * spec_.speed)};
   for (const Vec3d& s : section_) {
@@ -84,7 +225,9 @@ void JetEmitter::layer(double offset, std::vector<Spawn>& out, int32_t& next_id)
 std::vector<Spawn> JetEmitter::prefill(int32_t& next_id) {
   std::vector<Spawn> out;
   if (spec_.start > 0.0) return out;
-  for (double offset = 0.0; offset < inlet_length_ - 1e-9 * spacing_; offset += spacing_) layer(offset, out, next_id);
+  const long layers = inlet_layers();
+  out.reserve(std::size_t(layers) * section_.size());
+  for (long l = 0; l < layers; ++l) layer(double(l) * spacing_, out, next_id);
   return out;
 }
 
@@ -93,6 +236,17 @@ std::vector<Spawn> JetEmitter::advance(double t, double dt, int32_t& next_id) {
   const double t0 = std::max(t, spec_.start), t1 = std::min(t + dt, spec_.stop);
   if (t1 <= t0) return out;
   travelled_ += spec_.speed * (t1 - t0);
+  // Checked before allocating: one long step of a fast jet could otherwise ask for gigabytes.
+  const double layers = std::floor(travelled_ / spacing_);
+  if (layers * double(section_.size()) > max_particles_) {
+    std::ostringstream os;
+    os << source_ << ": emitters." << index_ << " (jet) would create " << layers * double(section_.size())
+       << " particles in one step of " << dt << " s (" << spec_.speed << " m/s over " << dt
+       << " s is " << layers << " layers of spacing " << spacing_ << " m), more than limits.max_particles = "
+       << max_particles_ << "; lower time_step.dt / time_step.max or the jet's speed";
+    throw SceneError(os.str());
+  }
+  out.reserve(std::size_t(layers) * section_.size());
   while (travelled_ >= spacing_) {
     travelled_ -= spacing_;
     layer(travelled_, out, next_id);  // born one spacing ago would have moved travelled_ since

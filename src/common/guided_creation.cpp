@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <sstream>
-#include <unistd.h>
+
+#include "setup_budget.h"
+#include "setup_checks.h"
 
 #include "frame_reader.h"
 #include "obstacle_contacts.h"
@@ -38,27 +41,16 @@ namespace {
 
 Vec3 f3(const Vec3d& v) { return Vec3{float(v[0]), float(v[1]), float(v[2])}; }
 
-std::size_t physical_memory_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? std::size_t(pages) * std::size_t(page) : std::size_t(8) << 30;
-}
-
-void check_particle_budget(const Scene& scene, double count) {
+std::string metres(double x) {
   std::ostringstream os;
-  if (count > scene.max_particles) {
-    os << scene.source << ": the scene needs about " << std::llround(count) << " particles, more than limits.max_particles = "
-       << std::llround(scene.max_particles) << "; lower the resolution or raise the limit";
-    throw SceneError(os.str());
-  }
-  const double bytes = count * double(kBytesPerParticle);
-  const double avail = 0.5 * double(physical_memory_bytes());
-  if (bytes > avail) {
-    os << scene.source << ": " << std::llround(count) << " particles need about " << bytes / 1e9
-       << " GB, more than half of this machine's memory (" << avail * 2 / 1e9 << " GB); lower the resolution";
-    throw SceneError(os.str());
-  }
+  os.precision(4);
+  os << x;
+  return os.str();
 }
 
+// Uniform grid over the container (or domain, or the fluid with room to spread). Cell counts are
+// computed in double and the grid is refused, not wrapped round or collapsed, when the domain is too
+// large or too thin for cells of about h / 2.
 GridGeometry make_grid(const Scene& scene, const ParticleState& ps, const std::vector<JetEmitter>& jets, double h,
                        double expected) {
   Vec3d lo{1e30, 1e30, 1e30}, hi{-1e30, -1e30, -1e30};
@@ -95,31 +87,106 @@ GridGeometry make_grid(const Scene& scene, const ParticleState& ps, const std::v
     lo[i] -= 2.0 * h;
     hi[i] += 2.0 * h;
   }
-  // Cells at least h / reach wide; coarser when the domain would need an absurd number of cells.
+  // Cells at least h / reach wide; coarser when the domain would need too many cells, up to h (each
+  // search then tests about 8 times the candidates it was designed for); beyond that the scene is refused.
   const int reach = 2;
-  const double max_cells = std::max(1.0 * (1 << 22), 16.0 * expected);
+  // At most 2^30 cells: cell indices and cell_start are int32.
+  const double max_cells = std::min(std::max(1.0 * (1 << 22), 16.0 * expected), 1.0 * (1 << 30));
   double cell = h / reach;
-  const double volume = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-  if (volume / (cell * cell * cell) > max_cells) cell = std::cbrt(volume / max_cells);
+  auto cells = [&](int axis) { return std::max(1.0, std::ceil((hi[axis] - lo[axis]) / cell)); };
+  auto total = [&] { return cells(0) * cells(1) * cells(2); };
+  for (int grow_steps = 0; total() > max_cells && grow_steps < 100; ++grow_steps) cell *= 1.1;
+  if (total() > max_cells || cell > h) {
+    std::ostringstream os;
+    cell = h / reach;
+    os << scene.source << ": the simulation domain " << metres(hi[0] - lo[0]) << " x " << metres(hi[1] - lo[1]) << " x "
+       << metres(hi[2] - lo[2]) << " m (with a band of 2 h) needs " << count_text(std::round(total()))
+       << " grid cells of h / 2 = " << metres(cell) << " m, more than the " << count_text(max_cells)
+       << " this scene may use (16 per particle, at least 4194304, at most 2^30); make the domain (\"domain\" or the box "
+          "container) fit the fluid more closely, or coarsen the resolution";
+    throw SceneError(os.str());
+  }
   GridGeometry g{};
   g.origin = f3(lo);
   g.cell_size = float(cell);
   g.reach = reach;
-  g.nx = std::max(1, int(std::ceil((hi[0] - lo[0]) / cell)));
-  g.ny = std::max(1, int(std::ceil((hi[1] - lo[1]) / cell)));
-  g.nz = std::max(1, int(std::ceil((hi[2] - lo[2]) / cell)));
+  g.nx = int32_t(cells(0));
+  g.ny = int32_t(cells(1));
+  g.nz = int32_t(cells(2));
   return g;
 }
 
-}  // namespace
+// Volume [m^3] an instant emitter asks for (overlaps with other emitters included).
+double emitter_volume(const EmitterSpec& e) {
+  if (e.type == EmitterType::Box) return (e.max[0] - e.min[0]) * (e.max[1] - e.min[1]) * (e.max[2] - e.min[2]);
+  return 4.0 / 3.0 * 3.14159265358979323846 * e.radius * e.radius * e.radius;
+}
 
-Setup create_setup(const Scene& scene, double run_time) {
-  Setup s;
+// Most particles an instant emitter can create, from its index box alone: exact for a box, the volume
+// of a sphere one spacing larger for a sphere.
+double instant_count_bound(const EmitterSpec& e, const Lattice& lattice) {
+  const double box = emitter_index_box(e, lattice).count();
+  if (e.type == EmitterType::Box) return box;
+  const double r = e.radius / lattice.spacing + 1.0;
+  return std::min(box, 4.19 * r * r * r);
+}
+
+// Set-up report lines for the instant emitters: layers and filled extent of boxes where the extent is not
+// a whole number of spacings, shared lattice points, mass against rho0 times the asked volume.
+void report_fill(const Scene& scene, const Lattice& lattice, const SimConstants& c,
+                 const std::vector<EmitterFill>& stats, std::vector<std::string>& report) {
+  for (std::size_t e = 0; e < scene.emitters.size(); ++e) {
+    const EmitterSpec& em = scene.emitters[e];
+    if (em.type == EmitterType::Jet) continue;
+    std::ostringstream os;
+    os << emitter_label(scene.emitters, e) << ": " << stats[e].created << " particles";
+    if (em.type == EmitterType::Box) {
+      const IndexBox b = emitter_index_box(em, lattice);
+      double filled[3];
+      bool whole = true;
+      for (int a = 0; a < 3; ++a) {
+        filled[a] = double(b.hi[a] - b.lo[a] + 1) * lattice.spacing;
+        whole = whole && std::fabs(filled[a] - (em.max[a] - em.min[a])) < 1e-6 * lattice.spacing;
+      }
+      os << " on " << (b.hi[0] - b.lo[0] + 1) << " x " << (b.hi[1] - b.lo[1] + 1) << " x " << (b.hi[2] - b.lo[2] + 1)
+         << " layers";
+      if (!whole)
+        os << " filling " << metres(filled[0]) << " x " << metres(filled[1]) << " x " << metres(filled[2])
+           << " m (asked " << metres(em.max[0] - em.min[0]) << " x " << metres(em.max[1] - em.min[1]) << " x "
+           << metres(em.max[2] - em.min[2]) << " m: not whole numbers of the spacing " << metres(lattice.spacing) << " m)";
+    }
+    const FluidConstants& fc = c.fluids[em.fluid];
+    os << ", mass " << metres(double(stats[e].created) * double(fc.mass)) << " kg (rho0 x asked volume: "
+       << metres(double(fc.rest_density) * emitter_volume(em)) << " kg)";
+    if (stats[e].shared > 0) os << "; " << stats[e].shared << " lattice points shared with earlier emitters, filled once";
+    report.push_back(os.str());
+  }
+}
+
+// Everything but the memory guard of create_setup. `estimate` holds the particle count known so far, for
+// an out-of-memory message.
+void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate) {
   // Spacing: given, or particles across the smallest extent of the first emitter (thesis 4.1.4 nClass).
   s.spacing = scene.spacing > 0.0 ? scene.spacing : scene.emitters.front().min_extent() / scene.particles_across;
   if (!(s.spacing > 0.0) || !std::isfinite(s.spacing)) throw SceneError(scene.source + ": resolution gives no valid spacing");
   s.h = smoothing_length(s.spacing, scene.neighbours);
-  s.lattice_density = lattice_density_factor(s.spacing, s.h);
+
+  // Count first, so an absurd resolution is refused before anything large is allocated or looped over:
+  // the instant emitters from their lattice index boxes, the jets' sections from their candidates.
+  const Lattice lattice = make_lattice(scene, s.spacing);
+  const bool from_frame = !scene.initial_state.empty();  // the frame replaces the instant emitters' fill
+  for (const EmitterSpec& e : scene.emitters)
+    if (e.type != EmitterType::Jet && !from_frame) estimate += instant_count_bound(e, lattice);
+  check_particle_budget(scene, estimate, "the instant emitters (box, sphere) at spacing " + metres(s.spacing) + " m");
+  for (std::size_t i = 0; i < scene.emitters.size(); ++i)
+    if (scene.emitters[i].type == EmitterType::Jet)
+      check_particle_budget(scene, JetEmitter::section_candidates(scene.emitters[i], s.spacing),
+                            emitter_label(scene.emitters, i) + ": its section lattice (radius " +
+                                metres(scene.emitters[i].radius) + " m at spacing " + metres(s.spacing) + " m)");
+
+  // The kernel sum over the lattice depends on h / d only: computed at d = 1 it cannot overflow.
+  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing);
+  check_float_range(scene, s.spacing, s.h, s.lattice_density);
 
   SimConstants& c = s.constants;
   c.kernel = make_kernel_coeffs(s.h);
@@ -158,55 +225,88 @@ Setup create_setup(const Scene& scene, double run_time) {
   for (std::size_t i = 0; i < scene.boundaries.size(); ++i) c.shapes[i] = scene.boundaries[i].shape;
   seal_obstacle_contacts(c.shapes, c.num_shapes, float(0.5 * s.spacing));
 
-  // Count first, so an absurd resolution is refused before anything large is allocated.
-  double instant = 0.0;
-  const bool from_frame = !scene.initial_state.empty();  // the frame replaces the instant emitters' fill
-  for (const EmitterSpec& e : scene.emitters) {
-    if (e.type == EmitterType::Jet || from_frame) continue;
-    if (e.type == EmitterType::Box) {
-      double n = 1.0;
-      for (int i = 0; i < 3; ++i) n *= std::max(1.0, std::round((e.max[i] - e.min[i]) / s.spacing));
-      instant += n;
-    } else {
-      instant += 4.19 * std::pow(e.radius / s.spacing + 1.0, 3);
-    }
+  // The jets: the inlet holds ceil(L / d) layers of the section, and one step of dt_max emits
+  // speed dt_max / d layers (plus one carried over).
+  const double budget = particle_budget(scene);
+  const double dt_max = scene.time_step.mode == TimeStepMode::Fixed ? scene.time_step.dt : scene.time_step.max;
+  std::vector<int> jet_index;
+  for (std::size_t i = 0; i < scene.emitters.size(); ++i) {
+    const EmitterSpec& e = scene.emitters[i];
+    if (e.type != EmitterType::Jet) continue;
+    const std::string label = emitter_label(scene.emitters, i);
+    const double inlet = e.inlet_length >= 0.0 ? e.inlet_length : 4.0 * s.h;  // thesis 4.1.6: 4 h
+    s.jets.emplace_back(e, s.spacing, inlet, float(scene.fluids[std::size_t(e.fluid)].rest_density), budget,
+                        scene.source, int(i));
+    jet_index.push_back(int(i));
+    const double section = double(s.jets.back().section_size());
+    estimate += section * std::ceil(inlet / s.spacing);
+    check_particle_budget(scene, estimate,
+                          label + ": its inlet (emitters." + std::to_string(i) + ".inlet_length " + metres(inlet) +
+                              " m), with the emitters before it,",
+                          "shorten the inlet or lower the resolution");
+    check_particle_budget(scene, section * (std::floor(e.speed * dt_max / s.spacing) + 1.0),
+                          label + ": one time step (speed " + metres(e.speed) + " m/s x largest dt " + metres(dt_max) +
+                              " s at spacing " + metres(s.spacing) + " m)",
+                          "lower time_step.dt and time_step.max, the jet's speed or the resolution");
+    FluidConstants& fc = c.fluids[e.fluid];
+    if (fc.lifetime != 0.0f && fc.lifetime != float(e.lifetime))
+      throw SceneError(scene.source + ": two jets of fluid \"" + scene.fluids[std::size_t(e.fluid)].name +
+                       "\" have different lifetimes; particle lifetime is a property of the fluid");
+    fc.lifetime = float(e.lifetime);
+    s.report.push_back(label + ": " + std::to_string(s.jets.back().section_size()) + " particles per layer, inlet " +
+                       metres(inlet) + " m (" + std::to_string(s.jets.back().inlet_layers()) + " layers" +
+                       (e.start > 0.0 ? ", not prefilled: the jet starts at " + metres(e.start) + " s)" : ", prefilled)"));
   }
-  check_particle_budget(scene, instant);
+  check_jet_inlets(scene, s.jets, jet_index);
+  double steady = estimate;
+  for (const JetEmitter& j : s.jets) steady += j.steady_count(run_time);
+  check_particle_budget(scene, steady, "the emitters, with the jets running for " + metres(run_time) + " s,",
+                        "give the jets a lifetime or a stop time, lower the resolution");
 
-  for (const EmitterSpec& e : scene.emitters) {
-    if (e.type == EmitterType::Jet) {
-      const double inlet = e.inlet_length >= 0.0 ? e.inlet_length : 4.0 * s.h;  // thesis 4.1.6: 4 h
-      s.jets.emplace_back(e, s.spacing, inlet, float(scene.fluids[std::size_t(e.fluid)].rest_density));
-      FluidConstants& fc = c.fluids[e.fluid];
-      if (fc.lifetime != 0.0f && fc.lifetime != float(e.lifetime))
-        throw SceneError(scene.source + ": two jets of fluid \"" + scene.fluids[std::size_t(e.fluid)].name +
-                         "\" have different lifetimes; particle lifetime is a property of the fluid");
-      fc.lifetime = float(e.lifetime);
-      continue;
-    }
-    if (from_frame) continue;
-    const std::vector<Vec3d> pts = fill_emitter(e, s.spacing);
-    const float rho0 = float(scene.fluids[std::size_t(e.fluid)].rest_density);
-    for (const Vec3d& p : pts) {
-      Spawn sp{f3(p), f3(e.velocity), 0.0f, rho0, uint8_t(e.fluid), s.next_id++};
-      s.particles.append(sp);
+  if (from_frame) {
+    s.particles = initial_state_particles(scene, s.spacing, s.next_id);
+    s.report.push_back("initial state: " + std::to_string(s.particles.size()) + " particles from " + scene.initial_state);
+  } else {
+    std::vector<EmitterFill> stats;
+    std::vector<FilledPoint> points = fill_instant_emitters(scene.emitters, lattice, stats);
+    for (std::size_t e = 0; e < scene.emitters.size(); ++e)
+      if (scene.emitters[e].type != EmitterType::Jet && stats[e].created + stats[e].shared == 0)
+        throw SceneError(scene.source + ": " + emitter_label(scene.emitters, e) + " holds no lattice point at spacing " +
+                         metres(s.spacing) + " m; make it larger than the spacing or refine the resolution");
+    report_fill(scene, lattice, c, stats, s.report);
+    remove_blocked_points(scene, s.spacing, stats, points, s.report);
+    for (const FilledPoint& p : points) {
+      const EmitterSpec& e = scene.emitters[std::size_t(p.emitter)];
+      s.particles.append(Spawn{f3(p.pos), f3(e.velocity), 0.0f, float(scene.fluids[std::size_t(e.fluid)].rest_density),
+                               uint8_t(e.fluid), s.next_id++});
     }
   }
-  if (from_frame) s.particles = initial_state_particles(scene, s.spacing, s.next_id);
   for (JetEmitter& j : s.jets)
     for (const Spawn& sp : j.prefill(s.next_id)) s.particles.append(sp);
 
   s.expected_particles = double(s.particles.size());
   for (const JetEmitter& j : s.jets) s.expected_particles += j.steady_count(run_time);
-  check_particle_budget(scene, s.expected_particles);
   if (s.particles.size() == 0 && s.jets.empty())
-    throw SceneError(scene.source + ": the emitters create no particle at spacing " + std::to_string(s.spacing));
+    throw SceneError(scene.source + ": the emitters create no particle at spacing " + metres(s.spacing) +
+                     " m once the particles inside solids are removed");
 
   c.grid = make_grid(scene, s.particles, s.jets, s.h, s.expected_particles);
   // Weakly compressible SPH assumes flow speeds well below c0; ten times c0 (or a jet's speed) is a blow-up.
   double fastest = s.max_speed_of_sound;
   for (const JetEmitter& j : s.jets) fastest = std::max(fastest, j.spec().speed);
   s.blowup_speed = scene.blowup_speed > 0.0 ? scene.blowup_speed : 10.0 * fastest;
+}
+
+}  // namespace
+
+Setup create_setup(const Scene& scene, double run_time) {
+  Setup s;
+  double estimate = 0.0;
+  try {
+    build_setup(scene, run_time, s, estimate);
+  } catch (const std::bad_alloc&) {
+    throw SceneError(out_of_memory_text(scene, std::max(estimate, double(s.particles.size()))));
+  }
   return s;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "emitters.h"
@@ -24,6 +25,9 @@ struct Setup {
   double blowup_speed = 0.0;       // speeds above this stop the run
   double expected_particles = 0.0; // instant particles plus the jets' steady state
   int32_t next_id = 0;
+  // What set-up found and did, one line each (fills, shared lattice points, particles removed from
+  // solids): the runner prints them as "setup: ...".
+  std::vector<std::string> report;
 };
 
 // Support radius from the mean neighbour count, thesis eq. 4.1: h = cbrt(3 V n_avg / (4 pi N)), with
@@ -39,8 +43,11 @@ double lattice_density_factor(double spacing, double h);
 // physical sigma [N/m] of the scene maps to kappa = sigma m / (0.005127 rho0^2 h^3).
 double cohesion_from_surface_tension(double sigma, double mass, double rest_density, double h);
 
-// Throws SceneError when the scene cannot be set up (no particle fits an emitter, too many particles for
-// this machine's memory, grid too large, ...).
+// Throws SceneError when the scene cannot be set up: an emitter holds no lattice point, a jet's inlet
+// crosses a boundary, fluid lies in a solid with "on_overlap": "error", a derived quantity leaves single
+// precision's range, the particles (counted before anything is allocated) exceed limits.max_particles or
+// this machine's memory, the grid would be too large; a std::bad_alloc becomes "out of memory" with the
+// estimate.
 Setup create_setup(const Scene& scene, double run_time);
 
 }  // namespace sph

@@ -74,8 +74,13 @@ struct ParticleState {
   }
 };
 
-// Bytes of host memory one particle needs in the reference back end (state, reorder copy, grid arrays):
-// used to refuse particle counts that cannot fit before allocating anything.
-constexpr std::size_t kBytesPerParticle = 2 * (6 * sizeof(Vec3) + 5 * sizeof(float) + 1 + 4) + 3 * 4;
+// Bytes of memory one particle needs at peak, used to refuse particle counts that cannot fit before
+// allocating anything. The fields above take 97 bytes; the state, its reorder copy, the downloaded copy,
+// the grid's index arrays and the vectors' growth make about six times that. Measured peak resident size
+// per particle of scenes/dam_break.json (/usr/bin/time -v, 5 steps), before pos_start was added (85 bytes of
+// fields): 468 bytes on cpu and 559 on host between 16,000 and 128,000 particles, 443 and 531 (peak /
+// particles) at 432,000; six times the fields was within 15%.
+constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
+constexpr std::size_t kBytesPerParticle = 6 * kParticleFieldBytes;
 
 }  // namespace sph

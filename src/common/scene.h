@@ -120,6 +120,7 @@ struct Scene {
   double frames_every = 0.0;     // 0 = no frames unless asked
   double max_particles = 2e7;
   double blowup_speed = 0.0;     // 0 = 10 x the largest speed of sound
+  bool overlap_error = false;    // "on_overlap": fluid placed in a solid is "remove"d (default) or an "error"
   RelaxationSpec relaxation;
   // "initial_state": a frame (frame_writer.h) whose particles replace the instant emitters' fill; jets
   // still run. Stored resolved against the scene file's folder; empty = none.

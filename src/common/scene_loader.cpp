@@ -365,7 +365,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   s.source = source;
   ObjectReader r(root, source, "");
   r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "integrator",
-           "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state"});
+           "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state", "on_overlap"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -473,6 +473,7 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   }
 
   s.gravity = r.vec3("gravity", s.gravity, 1e4);
+  s.overlap_error = r.choice<bool>("on_overlap", false, {{"remove", false}, {"error", true}});
 
   if (r.has("domain")) {
     ObjectReader dr(r.raw("domain"), source, "domain");

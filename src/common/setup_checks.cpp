@@ -1,0 +1,143 @@
+#include "setup_checks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+
+namespace sph {
+
+namespace {
+
+Vec3d d3(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
+
+double length(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+Vec3d minus(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+double box_clearance(const Shape& s, const Vec3d& p) {
+  const Vec3d lo = d3(s.a), hi = d3(s.b);
+  if (s.keep_inside) {  // container: nearest wall, negative past any of them
+    double c = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+      c = std::min(c, p[a] - lo[a]);
+      if (!(a == 1 && s.open_top)) c = std::min(c, hi[a] - p[a]);
+    }
+    return c;
+  }
+  // Obstacle: Euclidean distance outside, minus the distance to the nearest face inside.
+  double out2 = 0.0, in = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    const double below = lo[a] - p[a], above = p[a] - hi[a];
+    const double gap = std::max({below, above, 0.0});
+    out2 += gap * gap;
+    in = std::min(in, std::min(p[a] - lo[a], hi[a] - p[a]));
+  }
+  return out2 > 0.0 ? std::sqrt(out2) : -in;
+}
+
+// Obstacles keep the fluid outside them; containers, planes (on their normal side) keep it inside.
+bool outside_is_allowed(const Shape& s) {
+  return (s.type == ShapeType::Box || s.type == ShapeType::Sphere) ? !s.keep_inside : s.type == ShapeType::Quadric;
+}
+
+}  // namespace
+
+double boundary_clearance(const Shape& s, const Vec3d& p) {
+  switch (s.type) {
+    case ShapeType::Box:
+      return box_clearance(s, p);
+    case ShapeType::Plane: {
+      const Vec3d r = minus(p, d3(s.a)), n = d3(s.b);
+      return r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
+    }
+    case ShapeType::Sphere: {
+      const double dist = length(minus(p, d3(s.a)));
+      return s.keep_inside ? double(s.radius) - dist : dist - double(s.radius);
+    }
+    case ShapeType::Quadric: {
+      // f = h^T Q h with h = (p, 1); grad f = 2 Q_sub h (seed 000, eq. 23), in double.
+      const double h[4] = {p[0], p[1], p[2], 1.0};
+      double f = 0.0, g[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+          f += h[i] * double(s.q[4 * i + j]) * h[j];
+          if (i < 3) g[i] += 2.0 * double(s.q[4 * i + j]) * h[j];
+        }
+      const double gl = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      if (gl > 0.0) return f / gl;
+      return f >= 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+std::string emitter_label(const std::vector<EmitterSpec>& emitters, std::size_t index) {
+  const EmitterType t = emitters[index].type;
+  return "emitters." + std::to_string(index) +
+         (t == EmitterType::Box ? " (box)" : t == EmitterType::Sphere ? " (sphere)" : " (jet)");
+}
+
+std::string boundary_label(const std::vector<BoundarySpec>& boundaries, std::size_t index) {
+  const Shape& s = boundaries[index].shape;
+  std::string kind;
+  switch (s.type) {
+    case ShapeType::Box: kind = s.keep_inside ? "box container" : "box obstacle"; break;
+    case ShapeType::Plane: kind = s.absorb ? "absorbing plane" : "plane"; break;
+    case ShapeType::Sphere: kind = s.keep_inside ? "sphere container" : "sphere obstacle"; break;
+    case ShapeType::Quadric: kind = "quadric obstacle"; break;
+  }
+  return "boundaries." + std::to_string(index) + " (" + kind + ")";
+}
+
+void remove_blocked_points(const Scene& scene, double spacing, const std::vector<EmitterFill>& stats,
+                           std::vector<FilledPoint>& points, std::vector<std::string>& report) {
+  const double min_clearance = kMinWallClearance * spacing;
+  std::map<std::pair<int, int>, std::size_t> removed;  // (emitter, boundary) -> points removed
+  std::size_t kept = 0;
+  for (const FilledPoint& p : points) {
+    int blocked_by = -1;
+    for (std::size_t b = 0; b < scene.boundaries.size() && blocked_by < 0; ++b)
+      if (boundary_clearance(scene.boundaries[b].shape, p.pos) < min_clearance) blocked_by = int(b);
+    if (blocked_by >= 0) ++removed[{p.emitter, blocked_by}];
+    else points[kept++] = p;
+  }
+  points.resize(kept);
+  for (const auto& [key, count] : removed) {
+    const auto [e, b] = key;
+    std::ostringstream os;
+    os << emitter_label(scene.emitters, std::size_t(e)) << ": " << count << " of its "
+       << stats[std::size_t(e)].created << " particles lie " << (outside_is_allowed(scene.boundaries[std::size_t(b)].shape) ? "inside " : "outside ")
+       << boundary_label(scene.boundaries, std::size_t(b))
+       << " or within " << kMinWallClearance << " d = " << min_clearance << " m of its surface";
+    if (scene.overlap_error)
+      throw SceneError(scene.source + ": " + os.str() +
+                       "; move the emitter or the boundary (\"on_overlap\": \"error\"; \"remove\" would remove them)");
+    report.push_back(os.str() + "; removed");
+  }
+}
+
+void check_jet_inlets(const Scene& scene, const std::vector<JetEmitter>& jets, const std::vector<int>& jet_index) {
+  for (std::size_t j = 0; j < jets.size(); ++j) {
+    const JetEmitter& jet = jets[j];
+    for (long l = 0; l < jet.inlet_layers(); ++l)
+      for (std::size_t s = 0; s < jet.section_size(); ++s) {
+        const Vec3d p = jet.inlet_point(l, s);
+        for (std::size_t b = 0; b < scene.boundaries.size(); ++b) {
+          if (boundary_clearance(scene.boundaries[b].shape, p) >= 0.0) continue;
+          const std::size_t e = std::size_t(jet_index[j]);
+          std::ostringstream os;
+          os << scene.source << ": " << emitter_label(scene.emitters, e) << ": its inlet, " << jet.inlet_length()
+             << " m behind the outlet, crosses " << boundary_label(scene.boundaries, b) << " (the inlet point ("
+             << p[0] << ", " << p[1] << ", " << p[2] << ") lies outside it); move emitters." << e
+             << ".position at least " << jet.inlet_length() << " m plus the jet's radius away from the boundary, or set a shorter emitters."
+             << e << ".inlet_length";
+          throw SceneError(os.str());
+        }
+      }
+  }
+}
+
+}  // namespace sph
