@@ -106,6 +106,8 @@ class Demo {
     camera_.pitch = 0.35f;
     lines_.build(base_, lo_, hi_);
     radius_ = 0.5f * float(sim_->setup().spacing);
+    panel_.setup_report = sim_->setup().report;
+    panel_.setup_changed = sim_->setup().adjusted;
   }
 
   // A message for the user: on stderr, and in the panel (the last few).

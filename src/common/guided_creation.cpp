@@ -132,14 +132,17 @@ double instant_count_bound(const EmitterSpec& e, const Lattice& lattice) {
 }
 
 // Set-up report lines for the instant emitters: layers and filled extent of boxes where the extent is not
-// a whole number of spacings, shared lattice points, mass against rho0 times the asked volume.
-void report_fill(const Scene& scene, const Lattice& lattice, const SimConstants& c,
+// a whole number of spacings, shared lattice points, mass against rho0 times the asked volume. Returns
+// whether any emitter was refit or shared points.
+bool report_fill(const Scene& scene, const Lattice& lattice, const SimConstants& c,
                  const std::vector<EmitterFill>& stats, std::vector<std::string>& report) {
+  bool adjusted = false;
   for (std::size_t e = 0; e < scene.emitters.size(); ++e) {
     const EmitterSpec& em = scene.emitters[e];
     if (em.type == EmitterType::Jet) continue;
     std::ostringstream os;
     os << emitter_label(scene.emitters, e) << ": " << stats[e].created << " particles";
+    bool refit = false;
     if (em.type == EmitterType::Box) {
       const IndexBox b = emitter_index_box(em, lattice);
       double filled[3];
@@ -150,6 +153,7 @@ void report_fill(const Scene& scene, const Lattice& lattice, const SimConstants&
       }
       os << " on " << (b.hi[0] - b.lo[0] + 1) << " x " << (b.hi[1] - b.lo[1] + 1) << " x " << (b.hi[2] - b.lo[2] + 1)
          << " layers";
+      refit = !whole;
       if (!whole)
         os << " filling " << metres(filled[0]) << " x " << metres(filled[1]) << " x " << metres(filled[2])
            << " m (asked " << metres(em.max[0] - em.min[0]) << " x " << metres(em.max[1] - em.min[1]) << " x "
@@ -159,8 +163,10 @@ void report_fill(const Scene& scene, const Lattice& lattice, const SimConstants&
     os << ", mass " << metres(double(stats[e].created) * double(fc.mass)) << " kg (rho0 x asked volume: "
        << metres(double(fc.rest_density) * emitter_volume(em)) << " kg)";
     if (stats[e].shared > 0) os << "; " << stats[e].shared << " lattice points shared with earlier emitters, filled once";
+    adjusted = adjusted || refit || stats[e].shared > 0;
     report.push_back(os.str());
   }
+  return adjusted;
 }
 
 // Everything but the memory guard of create_setup. `estimate` holds the particle count known so far, for
@@ -273,8 +279,10 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
       if (scene.emitters[e].type != EmitterType::Jet && stats[e].created + stats[e].shared == 0)
         throw SceneError(scene.source + ": " + emitter_label(scene.emitters, e) + " holds no lattice point at spacing " +
                          metres(s.spacing) + " m; make it larger than the spacing or refine the resolution");
-    report_fill(scene, lattice, c, stats, s.report);
+    s.adjusted = report_fill(scene, lattice, c, stats, s.report);
+    const std::size_t filled = points.size();
     remove_blocked_points(scene, s.spacing, stats, points, s.report);
+    s.adjusted = s.adjusted || points.size() != filled;
     for (const FilledPoint& p : points) {
       const EmitterSpec& e = scene.emitters[std::size_t(p.emitter)];
       s.particles.append(Spawn{f3(p.pos), f3(e.velocity), 0.0f, float(scene.fluids[std::size_t(e.fluid)].rest_density),

@@ -28,6 +28,7 @@ struct Setup {
   // What set-up found and did, one line each (fills, shared lattice points, particles removed from
   // solids): the runner prints them as "setup: ...".
   std::vector<std::string> report;
+  bool adjusted = false;           // the checks changed what the scene asked for (refit, shared or removed points)
 };
 
 // Support radius from the mean neighbour count, thesis eq. 4.1: h = cbrt(3 V n_avg / (4 pi N)), with

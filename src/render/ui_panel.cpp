@@ -47,6 +47,11 @@ bool draw_panel(PanelModel& m) {
     ImGui::TextWrapped("%s", text.c_str());
     ImGui::PopStyleColor();
   }
+  // Open by default when the checks changed what the scene asked for (particles removed or lattices refit).
+  if (!m.setup_report.empty() &&
+      ImGui::CollapsingHeader("set-up checks", m.setup_changed ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+    for (const std::string& line : m.setup_report) ImGui::TextWrapped("%s", line.c_str());
+  }
   if (ImGui::CollapsingHeader("ms per step by phase")) {
     for (int p = 0; p < int(Phase::Count); ++p)
       ImGui::Text("%-11s %7.3f", phase_name(Phase(p)), m.phase_per_step.seconds[std::size_t(p)]);

@@ -30,6 +30,8 @@ struct PanelModel {
   ColourRange legend;
   std::vector<std::string> backends;
   std::vector<std::string> messages;  // what the demo skipped or stopped (scenes, overrides, emission)
+  std::vector<std::string> setup_report;  // the load-time checks' findings (Setup::report), as sph_run prints them
+  bool setup_changed = false;             // some finding removed particles or refit a lattice
 };
 
 // Draws the panel; returns true when a parameter was edited.
