@@ -50,9 +50,9 @@ const char* limit_name(StepLimit l) {
 }
 
 void write_metrics_row(std::ofstream& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
-  csv << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ','
-      << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ',' << m.front_x << ',' << m.top_y
-      << ',' << m.height_at_x0 << ',' << m.particles << ',' << wall_ms << '\n';
+  csv << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ',' << m.potential_energy
+      << ',' << sim.energy_budget() << ',' << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ','
+      << m.front_x << ',' << m.top_y << ',' << m.height_at_x0 << ',' << m.particles << ',' << wall_ms << '\n';
 }
 
 double median(std::vector<double> v) {
@@ -75,8 +75,8 @@ int run(const Options& o) {
   std::ofstream csv(csv_path);
   if (!csv) throw std::runtime_error("cannot write " + csv_path);
   csv.precision(9);
-  csv << "time,dt,step,kinetic_energy,density_error_mean,density_error_max,v_max,front_x,top_y,height_at_x0,particles,"
-         "wall_ms\n";
+  csv << "time,dt,step,kinetic_energy,potential_energy,energy_budget,density_error_mean,density_error_max,v_max,front_x,"
+         "top_y,height_at_x0,particles,wall_ms\n";
 
   Simulation sim(scene, factory, run_time);
   const Setup& st = sim.setup();
@@ -86,13 +86,9 @@ int run(const Options& o) {
             << ", lattice kernel sum: " << st.lattice_density << "\n"
             << "grid: " << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz
             << " cells of " << st.constants.grid.cell_size << " m\n"
-            << "integrator: " << integrator_name(scene.integrator) << ", blow-up bound: " << st.blowup_speed << " m/s\n"
-            << (sim.relaxation().ran
-                    ? "relaxation: " + std::to_string(sim.relaxation().steps) + " steps, " +
-                          (sim.relaxation().converged ? "converged" : "NOT converged (max_steps reached)") +
-                          ", final max speed " + std::to_string(sim.relaxation().final_speed) + " m/s (threshold " +
-                          std::to_string(sim.relaxation().threshold) + ")\n"
-                    : std::string())
+            << "integrator: " << integrator_name(scene.integrator) << ", speed bound: " << sim.speed_bound()
+            << " m/s, energy budget: " << sim.energy_budget() << " J\n"
+            << (sim.relaxation().ran ? sim.relaxation().summary() + "\n" : std::string())
             << "run: " << (by_steps ? std::to_string(o.steps) + " steps" : std::to_string(run_time) + " s simulated")
             << ", output: " << o.out << "\n";
   std::cout.flush();
@@ -108,7 +104,7 @@ int run(const Options& o) {
     write_frame();
     next_frame = frames_every;
   }
-  write_metrics_row(csv, sim, measure(st.constants, sim.particles()), 0.0);
+  write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), 0.0);
   next_metrics = o.metrics_every;
 
   const bool tty = isatty(STDERR_FILENO) && !o.quiet;
@@ -130,7 +126,7 @@ int run(const Options& o) {
     const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
     step_ms.push_back(ms);
     if (sim.time() >= next_metrics - 1e-12) {
-      write_metrics_row(csv, sim, measure(st.constants, sim.particles()), ms);
+      write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), ms);
       next_metrics = sim.time() + o.metrics_every;
     }
     if (frames_every > 0.0 && sim.time() >= next_frame - 1e-12) {
@@ -150,7 +146,7 @@ int run(const Options& o) {
   if (tty) std::fprintf(stderr, "\n");
   csv.flush();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Metrics m = measure(st.constants, sim.particles());
+  const Metrics m = measure(st.constants, sim.particles(), sim.potential_reference());
   const double med = median(step_ms);
   std::cout << "simulated_time: " << sim.time() << "\n"
             << "particles: " << sim.backend().size() << "\n"
@@ -179,8 +175,8 @@ int main(int argc, char** argv) {
   Options o;
   CLI::App app{
       "sph_run: run an SPH scene headless and record what happens.\n\n"
-      "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, density_error_mean, density_error_max, v_max,\n"
-      "front_x, top_y, height_at_x0, particles, wall_ms) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply\n"
+      "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, potential_energy, energy_budget, density_error_mean,\n"
+      "density_error_max, v_max, front_x, top_y, height_at_x0, particles, wall_ms) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply\n"
       "(ParaView, Blender). Ends with a summary: particles, steps, median ms_per_step, time by phase.\n"
       "Exit status: 0 done, 1 bad input, 3 the simulation became unstable."};
   app.add_option("scene", o.scene, "scene file (JSON), for example scenes/dam_break.json")->required();
