@@ -107,6 +107,27 @@ TEST_CASE("energy: a method set that creates energy is stopped with the energy m
   CHECK(message.find("sph.walls = \"mirror\"") != std::string::npos);
 }
 
+TEST_CASE("energy: a flow faster than c0 / 10 is told to raise the speed of sound", "[energy]") {
+  // c0 = 1.5 m/s, no more than the column's free-fall speed sqrt(2 g H) = 1.50 m/s, and the override
+  // limits.blowup_speed = 1 m/s, so that the speed bound trips as soon as the front runs.
+  sph::Scene scene = sph::parse_scene(default_dam_break(8), "dam.json",
+                                      {"fluids.0.speed_of_sound=1.5", "limits.blowup_speed=1"});
+  sph::Simulation sim(scene, cpu_factory(), 0.3);
+  CHECK(sim.speed_bound() == 1.0);
+  std::string message;
+  try {
+    while (sim.time() < 0.3) sim.advance();
+  } catch (const sph::BlowUp& e) {
+    message = e.what();
+  }
+  INFO(message);
+  REQUIRE_FALSE(message.empty());
+  CHECK(message.find("above the speed bound 1 m/s (limits.blowup_speed)") != std::string::npos);
+  // The flow the column can reach is sqrt(2 g y_top) = 1.47 m/s, y_top = H - d/2 the highest particle's
+  // height: c0 should be at least ten times that.
+  CHECK(message.find("Raise fluids.N.speed_of_sound to at least 14.7") != std::string::npos);
+}
+
 TEST_CASE("energy: jets add what they put in, and a jet faster than its c0 keeps running", "[energy]") {
   // water_jet: c0 = 1.5 m/s, flow 4.76 m/s out of a hole 3.5 m above the absorbing ground.
   sph::Simulation sim(scene_file("water_jet.json", {"resolution.particles_across=6"}), cpu_factory(), 1.0);

@@ -223,7 +223,11 @@ void Simulation::advance() {
   const double bound = speed_bound();
   if (!(diag_.max_speed <= bound)) {
     std::ostringstream os;
-    os << "speed " << diag_.max_speed << " m/s, above the speed bound " << bound << " m/s";
+    const char* which = scene_.blowup_speed > 0.0            ? "limits.blowup_speed"
+                        : !energy_check_active()             ? "10 c0 while the user force is on"
+                        : bound == setup_.max_speed_of_sound ? "the speed of sound c0"
+                                                             : "2 sqrt(e_max), e_max the largest specific energy put in";
+    os << "speed " << diag_.max_speed << " m/s, above the speed bound " << bound << " m/s (" << which << ")";
     blow_up(os.str(), diag_.fastest, dt);
   }
   if (energy_check_active() && steps_ % kEnergyCheckEvery == 0) check_energy(dt);
@@ -259,7 +263,6 @@ void Simulation::blow_up(const std::string& what, int32_t particle, double dt) c
     os << "particle id -1";
   }
   os << ": " << what << ".";
-  if (scene_.blowup_speed > 0.0) os << " (limits.blowup_speed = " << scene_.blowup_speed << " m/s)";
 
   const double c0 = setup_.max_speed_of_sound;
   const double dt_sound = scene_.time_step.cfl_sound * setup_.h / c0;
