@@ -195,10 +195,22 @@ sph_cli_test(blowup
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set time_step.mode=fixed --set time_step.dt=0.05
      --frames-every 0 --quiet --out ${SPH_CLI_OUT}/blowup)
 
+# --- a run that gains energy: exit 3 with the energy message and what to change, metrics kept ----------
+# dam_break with the old unsafe defaults (negative pressure kept, water's Mueller viscosity only, penalty
+# walls) holds 1.2 times its budget within about 20 steps (tests/test_energy.cpp).
+sph_cli_test(energy_gain
+  --exit 3 --clean ${SPH_CLI_OUT}/energy_gain
+  --stderr "became unstable" --stderr "particle id" --stderr "kinetic energy" --stderr "energy budget"
+  --stderr "sph.negative_pressure = \"clamp\""
+  --csv-column ${SPH_CLI_OUT}/energy_gain/metrics.csv energy_budget
+  --min-lines ${SPH_CLI_OUT}/energy_gain/metrics.csv 10
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set sph.negative_pressure=keep --set sph.viscosity=mueller
+     --set resolution.particles_across=10 --frames-every 0 --quiet --out ${SPH_CLI_OUT}/energy_gain)
+
 # --- a good run: thesis 5.2 cube, 3 steps ---------------------------------------------------------------
 set(_csv ${SPH_CLI_OUT}/perf_cube/metrics.csv)
 set(_columns)
-foreach(col time dt step kinetic_energy density_error_mean density_error_max v_max front_x)
+foreach(col time dt step kinetic_energy potential_energy energy_budget density_error_mean density_error_max v_max front_x)
   list(APPEND _columns --csv-column ${_csv} ${col})
 endforeach()
 sph_cli_test(perf_cube_3_steps

@@ -619,7 +619,7 @@ struct BallisticResult {
 BallisticResult run_ballistic(const std::string& boundaries, unsigned seed, long steps) {
   const std::string json = std::string(R"({ "name": "ballistic",
     "fluids": [ { "name": "water", "rest_density": 1000, "speed_of_sound": 20 } ],
-    "sph": { "viscosity": "none", "negative_pressure": "clamp" },
+    "sph": { "viscosity": "none", "negative_pressure": "clamp", "walls": "penalty" },
     "integrator": "modified_velocity_verlet",
     "gravity": [0, -9.81, 0],
     "emitters": [ { "type": "box", "min": [0.1, 0.1, 0.1], "max": [0.12, 0.12, 0.12] } ],

@@ -69,14 +69,14 @@ const char* limit_name(StepLimit l) {
 }
 
 const char* const kMetricsHeader =
-    "time,dt,step,kinetic_energy,density_error_mean,density_error_max,v_max,front_x,top_y,height_at_x0,particles,"
-    "wall_ms";
+    "time,dt,step,kinetic_energy,potential_energy,energy_budget,density_error_mean,density_error_max,v_max,front_x,"
+    "top_y,height_at_x0,particles,wall_ms";
 
 void write_metrics_row(MetricsFile& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
   std::ostringstream row;
   row.precision(9);
-  row << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ','
-      << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ',' << m.front_x << ',' << m.top_y
+  row << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ',' << m.potential_energy
+      << ',' << sim.energy_budget() << ',' << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ',' << m.front_x << ',' << m.top_y
       << ',' << m.height_at_x0 << ',' << m.particles << ',' << wall_ms;
   csv.write_row(row.str());
 }
@@ -124,13 +124,9 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << ", lattice kernel sum: " << st.lattice_density << "\n"
             << "grid: " << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz
             << " cells of " << st.constants.grid.cell_size << " m\n"
-            << "integrator: " << integrator_name(scene.integrator) << ", blow-up bound: " << st.blowup_speed << " m/s\n"
-            << (sim.relaxation().ran
-                    ? "relaxation: " + std::to_string(sim.relaxation().steps) + " steps, " +
-                          (sim.relaxation().converged ? "converged" : "NOT converged (max_steps reached)") +
-                          ", final max speed " + std::to_string(sim.relaxation().final_speed) + " m/s (threshold " +
-                          std::to_string(sim.relaxation().threshold) + ")\n"
-                    : std::string())
+            << "integrator: " << integrator_name(scene.integrator) << ", speed bound: " << sim.speed_bound()
+            << " m/s, energy budget: " << sim.energy_budget() << " J\n"
+            << (sim.relaxation().ran ? sim.relaxation().summary() + "\n" : std::string())
             << (restart ? "restart: " + o.restart + " (frame " + std::to_string(restart->info.frame_index) + ", step " +
                               std::to_string(sim.steps()) + ", t = " + std::to_string(sim.time()) + " s)\n"
                         : std::string())
@@ -223,7 +219,7 @@ int run(const Options& o) {
       if (!restart) write_frame();  // a continued run starts from a frame that already exists
       next_frame = frame_time_after(restart ? restart->info.frame_index : 0, frames_every);
     }
-    if (!csv.continued()) write_metrics_row(csv, sim, measure(st.constants, sim.particles()), 0.0);
+    if (!csv.continued()) write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), 0.0);
     next_metrics = o.metrics_every;
     while (!stop_requested() && (by_steps ? sim.steps() < o.steps : sim.time() < run_time - 1e-12)) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -239,7 +235,7 @@ int run(const Options& o) {
       const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
       step_ms.push_back(ms);
       if (sim.time() >= next_metrics - 1e-12) {
-        write_metrics_row(csv, sim, measure(st.constants, sim.particles()), ms);
+        write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), ms);
         next_metrics = sim.time() + o.metrics_every;
       }
       csv.flush_if_due();
@@ -265,7 +261,7 @@ int run(const Options& o) {
   if (tty) std::fprintf(stderr, "\n");
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const ParticleState& final_state = sim.particles();
-  const Metrics m = measure(st.constants, final_state);
+  const Metrics m = measure(st.constants, final_state, sim.potential_reference());
 
   if (const int sig = stop_requested(); sig != 0 && status == kDone) {
     std::cout << "interrupted: " << stop_signal_name(sig) << " at t = " << sim.time() << " s (step " << sim.steps()
@@ -309,10 +305,10 @@ int main(int argc, char** argv) {
   std::string time, steps, frames_every, metrics_every;
   CLI::App app{
       "sph_run: run an SPH scene headless and record what happens.\n\n"
-      "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, density_error_mean, density_error_max, v_max,\n"
-      "front_x, top_y, height_at_x0, particles, wall_ms; flushed at least once per second) and, with\n"
-      "--frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends with a summary: particles,\n"
-      "steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by phase).\n"
+      "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, potential_energy, energy_budget, density_error_mean,\n"
+      "density_error_max, v_max, front_x, top_y, height_at_x0, particles, wall_ms; flushed at least once per\n"
+      "second) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends with a\n"
+      "summary: particles, steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by phase).\n"
       "SIGINT or SIGTERM stops the run after the current step; the output is flushed and the summary printed.\n"
       "Exit status: 0 done, 1 bad input (scene or options), 3 the simulation became unstable (or its state is\n"
       "not finite), 4 an output could not be written, 130 stopped by SIGINT, 143 stopped by SIGTERM."};

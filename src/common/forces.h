@@ -112,7 +112,10 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
     const float rhob = p.density[b];
     const PairSide ghost{&c.fluids[p.fluid[b]], rhob, 1.0f / rhob, ghost_pressure(c, p.pressure[b], rhob, p.pos[b], xg),
                          p.near_pressure[b]};
-    pressure_viscosity_pair(c, side_a, ghost, xa - xg, r2, va - vg, acc);
+    const Vec3 xag = xa - xg;
+    Vec3 pair{0.0f, 0.0f, 0.0f};
+    pressure_viscosity_pair(c, side_a, ghost, xag, r2, va - vg, pair);
+    acc += push_only(walls, xg, pair);
   });
   acc += c.gravity;  // external forces, thesis eq. 2.25
   if (c.user_force.strength != 0.0f) {

@@ -17,6 +17,11 @@ struct FrameInfo {
   int32_t next_id = 0;              // id the next emitted particle gets
   double spacing = 0.0;             // particle spacing d [m]: the particle masses depend on it
   std::vector<double> jet_travelled;  // per jet: distance moved since its last layer was born [m]
+  // The energy check's state (Simulation): energy [J] and mass [kg] put in, the largest specific energy put
+  // in [J/kg] and the potential reference [J/kg], so a continued run is checked against the same budget.
+  // Frames without the line (older ones) continue with a budget re-based on their own state.
+  bool has_energy = false;
+  double energy_in = 0.0, mass_in = 0.0, max_specific_in = 0.0, potential_reference = 0.0;
 };
 
 }  // namespace sph

@@ -115,6 +115,15 @@ void parse_header(const std::vector<std::string>& lines, const std::string& path
           jets_seen >= info.jet_travelled.size())
         refuse(path, "header line \"" + line + "\": expected \"" + expect + "X\" after \"comment jets\"");
       info.jet_travelled[jets_seen++] = parse_double(path, "jet travelled", v.substr(sp + 11));
+    } else if (after("comment energy_budget ", v)) {
+      std::istringstream fields(v);
+      std::string e, m, s, p;
+      if (!(fields >> e >> m >> s >> p)) refuse(path, "header line \"" + line + "\": expected four numbers");
+      info.energy_in = parse_double(path, "energy_budget", e);
+      info.mass_in = parse_double(path, "energy_budget", m);
+      info.max_specific_in = parse_double(path, "energy_budget", s);
+      info.potential_reference = parse_double(path, "energy_budget", p);
+      info.has_energy = true;
     } else if (after("element vertex ", v)) {
       const long count = parse_long(path, "element vertex", v, 0, 2147483647L);
       if (double(count) > max_particles) {

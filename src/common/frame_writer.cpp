@@ -33,6 +33,11 @@ std::string header(const ParticleState& ps, const FrameInfo& info) {
     std::snprintf(line, sizeof line, "comment jet %zu travelled %.17g\n", j, info.jet_travelled[j]);
     h += line;
   }
+  if (info.has_energy) {
+    std::snprintf(line, sizeof line, "comment energy_budget %.17g %.17g %.17g %.17g\n", info.energy_in, info.mass_in,
+                  info.max_specific_in, info.potential_reference);
+    h += line;
+  }
   h += "element vertex " + std::to_string(ps.size()) + "\n";
   h += "property float x\nproperty float y\nproperty float z\n"
        "property float vx\nproperty float vy\nproperty float vz\n"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sph {
 
@@ -12,7 +13,40 @@ double robust_max(std::vector<float> v) {
   return v[k - 1];
 }
 
-Metrics measure(const SimConstants& c, const ParticleState& ps) {
+PotentialFloor lowest_reachable_potential(const SimConstants& c) {
+  const double g = std::sqrt(double(c.gravity.x) * c.gravity.x + double(c.gravity.y) * c.gravity.y +
+                             double(c.gravity.z) * c.gravity.z);
+  PotentialFloor out;
+  if (g == 0.0) return out;
+  bool any = false;
+  double level = -std::numeric_limits<double>::infinity();
+  auto bound = [&](double floor) {
+    any = true;
+    level = std::max(level, floor);
+  };
+  for (int32_t s = 0; s < c.num_shapes; ++s) {
+    const Shape& sh = c.shapes[s];
+    if (sh.type == ShapeType::Box && sh.keep_inside) {
+      double lowest = std::numeric_limits<double>::infinity();
+      for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 x{corner & 1 ? sh.b.x : sh.a.x, corner & 2 ? sh.b.y : sh.a.y, corner & 4 ? sh.b.z : sh.a.z};
+        lowest = std::min(lowest, specific_potential(c, x));
+      }
+      bound(lowest);
+    } else if (sh.type == ShapeType::Plane) {
+      // -g.x is bounded below on the side n points to only when n points against gravity: n.(-g) = |g|.
+      const double up = -(double(sh.b.x) * c.gravity.x + double(sh.b.y) * c.gravity.y + double(sh.b.z) * c.gravity.z);
+      if (up >= g * (1.0 - 1.5e-6)) bound(specific_potential(c, sh.a));  // cos(0.1 degree) = 1 - 1.5e-6
+    } else if (sh.type == ShapeType::Sphere && sh.keep_inside) {
+      bound(specific_potential(c, sh.a) - g * sh.radius);
+    }
+  }
+  out.bounded = any;
+  out.level = any ? level : 0.0;
+  return out;
+}
+
+Metrics measure(const SimConstants& c, const ParticleState& ps, double potential_reference) {
   Metrics m;
   std::vector<float> xs, ys, wall_ys;
   xs.reserve(ps.size());
@@ -24,6 +58,7 @@ Metrics measure(const SimConstants& c, const ParticleState& ps) {
     const Vec3 v = ps.vel[i];
     const double v2 = double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z;
     m.kinetic_energy += 0.5 * f.mass * v2;
+    m.potential_energy += f.mass * (specific_potential(c, ps.pos[i]) - potential_reference);
     m.momentum[0] += double(f.mass) * v.x;
     m.momentum[1] += double(f.mass) * v.y;
     m.momentum[2] += double(f.mass) * v.z;

@@ -10,6 +10,7 @@ namespace sph {
 
 struct Metrics {
   double kinetic_energy = 0.0;      // sum 1/2 m v^2 [J]
+  double potential_energy = 0.0;    // sum m (-g.x - phi_ref) [J], phi_ref the reference passed to measure()
   double density_error_mean = 0.0;  // mean |rho - rho0| / rho0 over fluid particles
   double density_error_max = 0.0;
   double v_max = 0.0;
@@ -20,7 +21,26 @@ struct Metrics {
   long particles = 0;
 };
 
-Metrics measure(const SimConstants& c, const ParticleState& ps);
+// Fluid particles only (a jet's inlet particles, age < 0, are moved kinematically and left out).
+// potential_reference: the specific potential energy -g.x [J/kg] counted as zero, normally the lowest level
+// the fluid can reach (Simulation::potential_reference()).
+Metrics measure(const SimConstants& c, const ParticleState& ps, double potential_reference = 0.0);
+
+// Specific potential energy of gravity at x: phi = -g.x [J/kg] (g.h above the origin for g along -y).
+inline double specific_potential(const SimConstants& c, Vec3 x) {
+  return -(double(c.gravity.x) * x.x + double(c.gravity.y) * x.y + double(c.gravity.z) * x.z);
+}
+
+// The lowest specific potential energy the fluid can reach [J/kg], from the boundaries that bound it
+// against gravity: a box container (its lowest corner), a plane, absorbing or not, whose normal points
+// against gravity (within 0.1 degree), a sphere container (its lowest point). Fluid must satisfy all of
+// them, so the highest of these floors is the one that holds. bounded = false when no shape bounds the
+// fluid (it may fall for ever); without gravity the level is 0 and bounded.
+struct PotentialFloor {
+  double level = 0.0;
+  bool bounded = true;
+};
+PotentialFloor lowest_reachable_potential(const SimConstants& c);
 
 // Robust extreme: the k-th largest value with k = max(3, N / 1000), so a few stray particles do not
 // count as the front of the fluid.

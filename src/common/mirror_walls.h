@@ -4,12 +4,14 @@
 // past it, where there are no particles, so a summation density reads low there (18% low at the first
 // layer) and the pressure sum is one-sided: the fluid pushes the particle into the wall and a layer packs
 // against it (in the dam break it clings to the back wall; the hydrostatic column settles 30% low). With
-// mirror walls (scene key sph.walls = "mirror") each neighbour b of a particle a near a wall also acts as
-// its mirror image b' across that wall (and across both walls of an edge and all three of a corner), with
-// b's mass and density, its velocity mirrored (normal part reversed; tangential part kept on a free-slip
+// mirror walls (scene key sph.walls = "mirror", the default) each neighbour b of a particle a near a wall
+// also acts as its mirror image b' across that wall (and across both walls of an edge and all three of a
+// corner), with b's mass and density, its velocity mirrored (normal part reversed; tangential part kept on a free-slip
 // wall, slip = 1, and reversed on a no-slip wall, slip = 0) and its pressure extrapolated hydrostatically,
 // P_b' = P_b + rho_b g.(x_b' - x_b) [Adami, Hu & Adams 2012, eq. 27 with a wall at rest], so a column at
-// rest is held by the wall exactly. Where there is no fluid there are no ghosts: a free surface meeting a
+// rest is held by the wall exactly. A ghost only pushes: the part of its pair term that points into the
+// wall is dropped (push_only), so no wall pulls fluid towards it or holds it there, whatever
+// sph.negative_pressure says. Where there is no fluid there are no ghosts: a free surface meeting a
 // wall stays free. A ghost b' lies within h of a only if b does (reflection across a wall with a and b on
 // the same side only lengthens a - b), so the ghosts come from the neighbour loop a already runs.
 // Walls: the faces of box containers (not an open top), non-absorbing planes, and sphere containers by
@@ -98,6 +100,19 @@ SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, c
       if (r2 < h2) f(b, xg, vg, r2);
     }
   });
+}
+
+// A wall pushes and never pulls. Negative pressure (sph.negative_pressure "keep") makes a ghost pair
+// attractive, and the viscous drag of a ghost moving the other way holds a particle that leaves the wall;
+// either would pull fluid towards the wall or hold it there. So for each wall the ghost lies behind, the
+// part of its pair term `pair` along that wall's normal is dropped when it points into the wall.
+SPH_HD inline Vec3 push_only(const NearWalls& w, Vec3 x_ghost, Vec3 pair) {
+  for (int32_t i = 0; i < w.count; ++i) {
+    if (dot(x_ghost, w.normal[i]) >= w.offset[i]) continue;  // not reflected across this wall
+    const float along = dot(pair, w.normal[i]);
+    if (along < 0.0f) pair -= along * w.normal[i];
+  }
+  return pair;
 }
 
 // Pressure of the ghost of b at x_ghost: hydrostatic extrapolation [Adami et al. 2012, eq. 27].

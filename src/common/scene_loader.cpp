@@ -444,8 +444,9 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
                                              {"mueller", ViscosityModel::Mueller},
                                              {"morris", ViscosityModel::Morris},
                                              {"artificial", ViscosityModel::Artificial}});
-    s.clamp_negative_pressure = sr.choice<bool>("negative_pressure", false, {{"keep", false}, {"clamp", true}});
-    s.mirror_walls = sr.choice<bool>("walls", false, {{"penalty", false}, {"mirror", true}});
+    s.clamp_negative_pressure =
+        sr.choice<bool>("negative_pressure", s.clamp_negative_pressure, {{"keep", false}, {"clamp", true}});
+    s.mirror_walls = sr.choice<bool>("walls", s.mirror_walls, {{"penalty", false}, {"mirror", true}});
     sr.finish();
   }
 

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
+
+#include "equation_of_state.h"
+#include "metrics.h"
 
 namespace sph {
 
@@ -32,6 +36,54 @@ Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double
     backend_->initialise_forces();
   }
   diag_ = backend_->diagnose();
+  if (!restart) rebase_energy(backend_->download());  // with its densities; the jets' prefilled inlets too
+}
+
+void Simulation::add_energy(Vec3 x, Vec3 v, int32_t fluid, double internal) {
+  const double m = setup_.constants.fluids[fluid].mass;
+  const double e =
+      0.5 * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z) + specific_potential(setup_.constants, x) + internal;
+  energy_in_ += m * e;
+  mass_in_ += m;
+  max_specific_in_ = std::max(max_specific_in_, e);
+  if (!floor_bounded_) potential_reference_ = std::min(potential_reference_, specific_potential(setup_.constants, x));
+}
+
+void Simulation::rebase_energy(const ParticleState& ps) {
+  const SimConstants& c = setup_.constants;
+  const PotentialFloor floor = lowest_reachable_potential(c);
+  floor_bounded_ = floor.bounded;
+  potential_reference_ = floor.level;
+  if (!floor_bounded_) {  // nothing holds the fluid against gravity: start from the grid's lowest corner
+    const GridGeometry& gg = c.grid;
+    const Vec3 size{gg.cell_size * float(gg.nx), gg.cell_size * float(gg.ny), gg.cell_size * float(gg.nz)};
+    potential_reference_ = std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 x = gg.origin + Vec3{corner & 1 ? size.x : 0.0f, corner & 2 ? size.y : 0.0f, corner & 4 ? size.z : 0.0f};
+      potential_reference_ = std::min(potential_reference_, specific_potential(c, x));
+    }
+  }
+  energy_in_ = mass_in_ = 0.0;
+  max_specific_in_ = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.age[i] >= kRemovedAge) continue;
+    const FluidConstants& f = c.fluids[ps.fluid[i]];
+    const double u = specific_internal_energy(c, f, ps.density[i]) +
+                     (c.near_enabled ? near_internal_energy(f, ps.near_density[i], ps.density[i]) : 0.0);
+    add_energy(ps.pos[i], ps.vel[i], ps.fluid[i], u);
+  }
+}
+
+double Simulation::energy_floor() const {
+  const double c0 = setup_.max_speed_of_sound;
+  return 0.5 * mass_in_ * (0.01 * c0) * (0.01 * c0);
+}
+
+double Simulation::speed_bound() const {
+  if (scene_.blowup_speed > 0.0) return scene_.blowup_speed;
+  if (!energy_check_active()) return setup_.blowup_speed;  // the user force does work: 10 c0 (guided creation)
+  const double e_max = std::max(0.0, max_specific_in_ - potential_reference_);
+  return std::max(setup_.max_speed_of_sound, 2.0 * std::sqrt(e_max));
 }
 
 // Thesis 4.1.6: steps that do not advance the simulated time, without gravity and with a large viscosity,
@@ -43,6 +95,10 @@ void Simulation::relax(const BackendFactory& factory) {
   SimConstants rc = setup_.constants;
   rc.gravity = Vec3{0.0f, 0.0f, 0.0f};
   rc.viscosity = ViscosityModel::Mueller;
+  // Negative pressure is kept while relaxing: without gravity it is all that holds the fluid together. With
+  // it clamped the fluid only expands (drop_zero_g with the volume mass rule: 79% below rest density after
+  // 5000 steps); the large viscosity damps the tensile instability that keeping it risks in a run.
+  rc.clamp_negative_pressure = 0;
   for (int32_t f = 0; f < rc.num_fluids; ++f) {
     FluidConstants& fc = rc.fluids[f];
     const double mu = spec.viscosity > 0.0 ? spec.viscosity : fc.rest_density * 0.03 * setup_.h * fc.speed_of_sound;
@@ -74,20 +130,61 @@ void Simulation::relax(const BackendFactory& factory) {
     }
   }
   ParticleState relaxed = relaxing->download();
+  // Near rest density? The bulk decides: summation density reads low within h of a free surface.
+  std::vector<double> ratio;
+  ratio.reserve(relaxed.size());
+  for (std::size_t i = 0; i < relaxed.size(); ++i)
+    if (relaxed.age[i] >= 0.0f) ratio.push_back(double(relaxed.density[i]) / rc.fluids[relaxed.fluid[i]].rest_density);
+  if (!ratio.empty()) {
+    const auto p90 = ratio.begin() + std::ptrdiff_t(0.9 * double(ratio.size() - 1));
+    std::nth_element(ratio.begin(), p90, ratio.end());
+    relaxation_.bulk_density_error = *p90 - 1.0;
+  }
+  relaxation_.at_rest_density = std::fabs(relaxation_.bulk_density_error) <= kRelaxedDensityTolerance;
+  relaxation_.converged = relaxation_.converged && relaxation_.at_rest_density;
   for (std::size_t i = 0; i < relaxed.size(); ++i) {
     relaxed.vel[i] = relaxed.vel_force[i] = relaxed.acc[i] = Vec3{0.0f, 0.0f, 0.0f};
   }
   setup_.particles = std::move(relaxed);
 }
 
+std::string RelaxationReport::summary() const {
+  std::ostringstream os;
+  os << "relaxation: " << steps << " steps, ";
+  if (converged) {
+    os << "converged";
+  } else if (!at_rest_density) {
+    os << "did NOT reach rest density";
+  } else {
+    os << "NOT converged (max_steps reached)";
+  }
+  os << ": final speed measure " << final_speed << " m/s (threshold " << threshold << "), bulk density "
+     << 100.0 * bulk_density_error << "% from rest density (tolerance " << 100.0 * kRelaxedDensityTolerance << "%)";
+  if (!at_rest_density)
+    os << ". The fluid is not at rest density: the lattice is too far from it for relaxation.max_steps, or the "
+          "fluid has room to spread; use resolution.mass = \"rest_density\", raise relaxation.max_steps or "
+          "relax without it (relaxation.enabled = false)";
+  return os.str();
+}
+
 void Simulation::set_constants(const SimConstants& constants) {
+  // Gravity and the user force change the energy the scene can hold: a new gravity re-bases the budget on
+  // the present state, and while the user force is on (it does work) the energy check is suspended and the
+  // speed bound is guided creation's 10 c0; it re-bases when the force is released.
+  const Vec3 g0 = setup_.constants.gravity, g1 = constants.gravity;
+  const bool gravity_changed = g0.x != g1.x || g0.y != g1.y || g0.z != g1.z;
+  const bool force_released = setup_.constants.user_force.strength != 0.0f && constants.user_force.strength == 0.0f;
   setup_.constants = constants;
   double c_max = 0.0;
   for (int32_t f = 0; f < constants.num_fluids; ++f)
     c_max = std::max(c_max, double(constants.fluids[f].speed_of_sound));
   setup_.max_speed_of_sound = c_max;
   setup_.viscous_rate = viscous_rate(constants, setup_.spacing, setup_.h, setup_.lattice_density);
+  double fastest = c_max;  // as guided creation: 10 times the fastest of c0 and the jets
+  for (const JetEmitter& j : setup_.jets) fastest = std::max(fastest, j.spec().speed);
+  setup_.blowup_speed = scene_.blowup_speed > 0.0 ? scene_.blowup_speed : 10.0 * fastest;
   backend_->set_constants(constants);
+  if (gravity_changed || force_released) rebase_energy(backend_->download());
 }
 
 void Simulation::switch_backend(const BackendFactory& factory) {
@@ -118,6 +215,7 @@ void Simulation::advance() {
          << std::llround(scene_.max_particles) << "; give the jets a lifetime or raise the limit";
       throw SceneError(os.str());
     }
+    for (const Spawn& sp : spawns) add_energy(sp.pos, sp.vel, sp.fluid);
     backend_->emit(spawns);
   }
   time_ += dt;
@@ -126,23 +224,83 @@ void Simulation::advance() {
   last_limit_ = choice.limit;
 
   diag_ = backend_->diagnose();
-  const bool nan = diag_.non_finite >= 0;
-  if (nan || !(diag_.max_speed <= setup_.blowup_speed)) {
-    const ParticleState& ps = backend_->download();
-    const int32_t i = nan ? diag_.non_finite : diag_.fastest;
+  if (diag_.non_finite >= 0) blow_up("a non-finite position or velocity", diag_.non_finite, dt);
+  const double bound = speed_bound();
+  if (!(diag_.max_speed <= bound)) {
     std::ostringstream os;
-    os << "simulation became unstable at t = " << time_ << " s (step " << steps_ << ", dt = " << dt << " s): particle id "
-       << (i >= 0 ? ps.id[std::size_t(i)] : -1);
-    if (i >= 0) {
-      const Vec3 x = ps.pos[std::size_t(i)], v = ps.vel[std::size_t(i)];
-      os << " at (" << x.x << ", " << x.y << ", " << x.z << ") has "
-         << (nan ? "a non-finite position or velocity" : "speed " + std::to_string(length(v)) + " m/s") << "";
-    }
-    if (!nan) os << ", above the blow-up bound " << setup_.blowup_speed << " m/s";
-    os << ". Try a smaller time step (time_step.dt, time_step.max or the CFL factors), a stabler integrator "
-          "(modified_velocity_verlet), or more viscosity.";
-    throw BlowUp(os.str());
+    const char* which = scene_.blowup_speed > 0.0            ? "limits.blowup_speed"
+                        : !energy_check_active()             ? "10 c0 while the user force is on"
+                        : bound == setup_.max_speed_of_sound ? "the speed of sound c0"
+                                                             : "2 sqrt(e_max), e_max the largest specific energy put in";
+    os << "speed " << diag_.max_speed << " m/s, above the speed bound " << bound << " m/s (" << which << ")";
+    blow_up(os.str(), diag_.fastest, dt);
   }
+  if (energy_check_active() && steps_ % kEnergyCheckEvery == 0) check_energy(dt);
+}
+
+void Simulation::check_energy(double dt) {
+  const ParticleState& ps = backend_->download();
+  // Kinetic energy as measure() counts it (inlet particles left out), without its other figures.
+  double kinetic = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (!floor_bounded_)  // falling for ever: the lowest level reached so far is the floor
+      potential_reference_ = std::min(potential_reference_, specific_potential(setup_.constants, ps.pos[i]));
+    if (ps.age[i] < 0.0f) continue;
+    const Vec3 v = ps.vel[i];
+    const double v2 = double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z;
+    kinetic += 0.5 * setup_.constants.fluids[ps.fluid[i]].mass * v2;
+  }
+  if (kinetic <= energy_limit()) return;
+  std::ostringstream os;
+  os << "kinetic energy " << kinetic << " J, above " << kEnergyMargin << " x the energy budget " << energy_budget()
+     << " J + " << energy_floor() << " J (the initial kinetic, potential and internal energy, potential above the "
+     << "lowest level the fluid can reach, plus what the jets put in); the fastest particle has speed "
+     << diag_.max_speed << " m/s";
+  blow_up(os.str(), diag_.fastest, dt);
+}
+
+// The blow-up message: when, where, which bound, the likely cause and what to change. The cause is read off
+// the scene: a fixed step above the sound-speed limit; a flow faster than a tenth of c0 (weak
+// compressibility needs c0 >= 10 times the flow speed); otherwise the method creates energy at this step
+// (tensile instability, walls, no dissipation of the start-up noise).
+void Simulation::blow_up(const std::string& what, int32_t particle, double dt) const {
+  const ParticleState& ps = backend_->download();
+  std::ostringstream os;
+  os << "simulation became unstable at t = " << time_ << " s (step " << steps_ << ", dt = " << dt << " s): ";
+  if (particle >= 0 && std::size_t(particle) < ps.size()) {
+    const Vec3 x = ps.pos[std::size_t(particle)];
+    os << "particle id " << ps.id[std::size_t(particle)] << " at (" << x.x << ", " << x.y << ", " << x.z << ")";
+  } else {
+    os << "particle id -1";
+  }
+  os << ": " << what << ".";
+
+  const double c0 = setup_.max_speed_of_sound;
+  const double dt_sound = scene_.time_step.cfl_sound * setup_.h / c0;
+  const double flow = std::sqrt(2.0 * std::max(0.0, max_specific_in_ - potential_reference_));
+  if (scene_.time_step.mode == TimeStepMode::Fixed && dt > dt_sound) {
+    os << " Likely cause: the fixed time step " << dt << " s is above the sound-speed limit cfl_sound h / c0 = "
+       << dt_sound << " s. Use a smaller time step (time_step.dt) or time_step.mode = \"adaptive\".";
+  } else if (what.find("non-finite") != std::string::npos) {
+    os << " Try a smaller time step (time_step.dt, time_step.max or the CFL factors), a stabler integrator "
+          "(modified_velocity_verlet), or more viscosity.";
+  } else if (what.find("speed") == 0 && 10.0 * flow > c0) {
+    os << " Likely cause: the flow (up to " << flow << " m/s, free fall and jets) is faster than a tenth of the "
+       << "speed of sound c0 = " << c0 << " m/s, so the fluid compresses far beyond the weakly compressible range. "
+       << "Raise fluids.N.speed_of_sound to at least " << 10.0 * flow << " m/s (10 times the flow speed).";
+  } else {
+    os << " Likely cause: energy grows at this time step, so the method creates it.";
+    bool alpha = false;
+    for (const FluidSpec& f : scene_.fluids) alpha = alpha || f.artificial_viscosity > 0.0;
+    if (!scene_.clamp_negative_pressure)
+      os << " Negative pressure pulls particles into clumps (tensile instability): set sph.negative_pressure = "
+            "\"clamp\" or add near pressure (fluids.N.near_stiffness).";
+    if (scene_.viscosity != ViscosityModel::Artificial || !alpha)
+      os << " Nothing damps the noise: set sph.viscosity = \"artificial\" with fluids.N.artificial_viscosity = 0.05.";
+    if (!scene_.mirror_walls) os << " Penalty walls pack particles against the walls: set sph.walls = \"mirror\".";
+    os << " A smaller time step (time_step.max or the CFL factors) helps where the step is near its limit.";
+  }
+  throw BlowUp(os.str());
 }
 
 }  // namespace sph

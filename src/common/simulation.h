@@ -14,8 +14,9 @@
 
 namespace sph {
 
-// The simulation became unstable: NaN, or a speed above the blow-up bound. The message names the time,
-// the step and the particle, and suggests what to change.
+// The simulation became unstable: NaN, a speed above the speed bound, or more kinetic energy than the scene
+// can hold (see Simulation). The message names the time, the step, the particle, which bound, the likely
+// cause and what to change.
 struct BlowUp : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -27,7 +28,29 @@ struct RelaxationReport {
   long steps = 0;
   double final_speed = 0.0;
   double threshold = 0.0;
+  // Bulk density at the end, as rho / rho0 - 1 of the particle at the 90th percentile of rho / rho0 (the
+  // surface reads low with summation density; the 90th percentile is a bulk particle), and whether it is
+  // within kRelaxedDensityTolerance of rest density. converged implies at_rest_density.
+  double bulk_density_error = 0.0;
+  bool at_rest_density = false;
+  // One line for the runner's summary: steps, whether it converged, the bulk density and, when it did not
+  // reach rest density or balance, why and what to change.
+  std::string summary() const;
 };
+constexpr double kRelaxedDensityTolerance = 0.02;
+
+// Energy check (issue 10): the energy the scene can hold is what was put in, measured from the lowest level
+// the fluid can reach (metrics.h, lowest_reachable_potential): the initial kinetic, potential and internal
+// energy of every particle (the elastic energy of its equation of state and near pressure,
+// equation_of_state.h; zero for a lattice at rest density with clamped negative pressure) plus
+// 1/2 m v^2 + m phi of each particle a jet creates (at rest density). A run is unstable when its kinetic
+// energy exceeds kEnergyMargin times that budget plus a floor, or when a particle is faster than the speed
+// bound (Simulation::speed_bound()).
+constexpr double kEnergyMargin = 1.2;
+// Steps between two energy checks: the check reads the particles back (a copy from a GPU), while energy
+// grows over many steps; a fast explosion is caught at every step by the speed bound. Nine steps in ten
+// do not check, so the median ms per step (sph_run, sph_bench) does not include it.
+constexpr long kEnergyCheckEvery = 10;
 
 class Simulation {
  public:
@@ -46,6 +69,25 @@ class Simulation {
   const Setup& setup() const { return setup_; }
   const Scene& scene() const { return scene_; }
   const RelaxationReport& relaxation() const { return relaxation_; }
+  // Energy budget [J]: everything put in, measured from potential_reference(); see kEnergyMargin.
+  double energy_budget() const { return energy_in_ - mass_in_ * potential_reference_; }
+  // The specific potential energy -g.x [J/kg] counted as zero (pass it to measure()).
+  double potential_reference() const { return potential_reference_; }
+  // Kinetic energy [J] allowed before the run stops: kEnergyMargin * budget + energy_floor().
+  double energy_limit() const { return kEnergyMargin * energy_budget() + energy_floor(); }
+  // Absolute floor [J]: the kinetic energy of everything put in moving at 1% of the largest speed of sound,
+  // 1/2 M (0.01 c0)^2. It equals the elastic energy a weakly compressible fluid stores at a 1% density
+  // change (c0^2 delta^2 / 2 per kg), which WCSPH allows and may release, so a fluid at rest without
+  // potential energy is not flagged for its acoustic noise or round-off.
+  double energy_floor() const;
+  // Fastest allowed particle [m/s]: limits.blowup_speed when the scene gives one, else
+  // max(c0, 2 sqrt(e_max)), e_max the largest specific energy put in [J/kg]. 2 sqrt(e) is sqrt(2) times the
+  // ballistic speed sqrt(2 e): pressure can pass energy on, and a dam-break front runs at 2 sqrt(g H)
+  // (Ritter 1892) where free fall from H gives sqrt(2 g H). A jet faster than its c0 (water_jet) keeps running.
+  // While the user force is on: guided creation's 10 times the fastest of c0 and the jets.
+  double speed_bound() const;
+  // Whether the energy check runs: suspended while the demo's user force (which does work) is on.
+  bool energy_check_active() const { return setup_.constants.user_force.strength == 0.0f; }
   TimeStepSpec& time_step() { return scene_.time_step; }  // live edits (the demo)
   Backend& backend() { return *backend_; }
   const ParticleState& particles() { return backend_->download(); }
@@ -70,8 +112,23 @@ class Simulation {
   Diagnostics diag_;
   RelaxationReport relaxation_;
 
+  // Energy bookkeeping (absolute: phi = -g.x without reference): sum m (1/2 v^2 + phi + u) and sum m of
+  // everything put in, the largest 1/2 v^2 + phi + u, and the reference level (see rebase_energy()).
+  double energy_in_ = 0.0;
+  double mass_in_ = 0.0;
+  double max_specific_in_ = 0.0;
+  double potential_reference_ = 0.0;
+  bool floor_bounded_ = true;
+
   void relax(const BackendFactory& factory);
   void continue_from(const Frame& frame);  // simulation_restart.cpp
+  // Counts a particle put in (the initial state or a jet's spawn) into the budget.
+  void add_energy(Vec3 x, Vec3 v, int32_t fluid, double internal = 0.0);
+  // Starts the budget afresh from the particles present (set-up, and live changes of gravity or the user
+  // force, which change what the scene can hold).
+  void rebase_energy(const ParticleState& ps);
+  void check_energy(double dt);
+  [[noreturn]] void blow_up(const std::string& what, int32_t particle, double dt) const;
   double time_ = 0.0;
   long steps_ = 0;
   double last_dt_ = 0.0;

@@ -36,6 +36,13 @@ void Simulation::continue_from(const Frame& frame) {
   time_ = info.time;
   steps_ = info.step;
   backend_->upload(setup_.particles);  // with the stored accelerations: no initialise_forces
+  rebase_energy(setup_.particles);      // the floor; then the original run's budget where the frame has it
+  if (info.has_energy) {
+    energy_in_ = info.energy_in;
+    mass_in_ = info.mass_in;
+    max_specific_in_ = info.max_specific_in;
+    potential_reference_ = info.potential_reference;
+  }
 }
 
 FrameInfo Simulation::frame_info(int frame_index) const {
@@ -47,6 +54,11 @@ FrameInfo Simulation::frame_info(int frame_index) const {
   info.next_id = setup_.next_id;
   info.spacing = setup_.spacing;
   for (const JetEmitter& j : setup_.jets) info.jet_travelled.push_back(j.travelled());
+  info.has_energy = std::isfinite(max_specific_in_) && std::isfinite(potential_reference_);
+  info.energy_in = energy_in_;
+  info.mass_in = mass_in_;
+  info.max_specific_in = max_specific_in_;
+  info.potential_reference = potential_reference_;
   return info;
 }
 
