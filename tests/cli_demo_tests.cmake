@@ -87,8 +87,8 @@ sph_demo_xvfb_test(demo_jet_without_lifetime
   -- ${SPH_XVFB} ${SPH_DEMO} --scene ${_jet} --frames 5)
 # Past the run time the demo goes on; at limits.max_particles the jet stops, with a message, not an exit.
 sph_demo_xvfb_test(demo_jet_stops_at_particle_limit
-  --exit 0 --stdout-line "frames: 20" --stderr "emission stopped" --stderr "limits.max_particles = 2500"
-  -- ${SPH_XVFB} ${SPH_DEMO} --scene ${_jet} --set run.time=0.01 --set limits.max_particles=2500 --frames 20)
+  --exit 0 --stdout-line "frames: 20" --stderr "emission stopped" --stderr "limits.max_particles = 3000"
+  -- ${SPH_XVFB} ${SPH_DEMO} --scene ${_jet} --set run.time=0.01 --set limits.max_particles=3000 --frames 20)
 unset(_jet)
 # A blow-up during the run ends the demo with exit 3 and sph_run's message.
 sph_demo_xvfb_test(demo_blowup

@@ -618,7 +618,7 @@ struct BallisticResult {
 
 BallisticResult run_ballistic(const std::string& boundaries, unsigned seed, long steps) {
   const std::string json = std::string(R"({ "name": "ballistic",
-    "fluids": [ { "name": "water", "rest_density": 1000, "speed_of_sound": 20 } ],
+    "fluids": [ { "name": "water", "rest_density": 1000, "speed_of_sound": 20, "artificial_viscosity": 0 } ],
     "sph": { "viscosity": "none", "negative_pressure": "clamp", "walls": "penalty" },
     "integrator": "modified_velocity_verlet",
     "gravity": [0, -9.81, 0],

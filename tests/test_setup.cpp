@@ -155,6 +155,29 @@ TEST_CASE("setup: a jet whose inlet crosses a boundary is refused naming both", 
   REQUIRE_NOTHROW(sph::create_setup(sph::parse_scene(jet_scene(0.1), "jet.json"), 1.0));
 }
 
+TEST_CASE("setup: a jet's section carries the asked flow area: a square exactly, a circle within 5%", "[setup]") {
+  // Issue 10 review: the half-offset lattice gave a square jet 14 x 14 points where 2r / d = 13 (+16% flow).
+  const auto jet = [](const std::string& section, double radius, double spacing) {
+    return sph::parse_scene(R"({ "name": "jet", "fluids": [ {} ],
+      "emitters": [ { "type": "jet", "section": ")" + section + R"(", "position": [0, 1, 0], "direction": [1, 0, 0],
+                      "radius": )" + std::to_string(radius) + R"(, "speed": 2, "lifetime": 0.5 } ],
+      "resolution": { "spacing": )" + std::to_string(spacing) + R"( } })", "jet.json");
+  };
+  for (const double across : {5.0, 12.0, 13.0, 20.0}) {
+    const double d = 0.01, r = 0.5 * across * d;
+    INFO(across << " spacings across");
+    const sph::Setup square = sph::create_setup(jet("square", r, d), 1.0);
+    CHECK(double(square.jets.at(0).section_size()) == across * across);
+    const sph::Setup circle = sph::create_setup(jet("circle", r, d), 1.0);
+    const double area = double(circle.jets.at(0).section_size()) * d * d;
+    CHECK(std::fabs(area / (sph::kPiDouble * r * r) - 1.0) < 0.05 + 1.5 / across);  // a lattice circle's rim
+  }
+  // The water jet at its shipped resolution: within 5% of pi r^2.
+  const sph::Setup wj = sph::create_setup(scene_file("water_jet.json"), 1.5);
+  const double d = wj.spacing;
+  CHECK(std::fabs(double(wj.jets.at(0).section_size()) * d * d / (sph::kPiDouble * 0.01) - 1.0) < 0.05);
+}
+
 TEST_CASE("setup: a 0.55 m column at 0.04 m starts half a spacing off the floor, with whole layers, at rest", "[setup]") {
   // Issue 10: 14 centred layers (2.8% extra water), the bottom layer 0.015 m off the floor, 12.8 m/s.
   const std::string text = R"({ "name": "column",

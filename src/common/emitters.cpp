@@ -159,9 +159,10 @@ Vec3d unit(const Vec3d& a) {
 }
 }  // namespace
 
+// Points across the section's side 2r: the nearest whole number, at least one.
 double JetEmitter::section_candidates(const EmitterSpec& spec, double spacing) {
-  const double n = std::ceil(spec.radius / spacing);
-  return (2.0 * n + 1.0) * (2.0 * n + 1.0);
+  const double across = std::max(1.0, std::round(2.0 * spec.radius / spacing));
+  return across * across;
 }
 
 JetEmitter::JetEmitter(const EmitterSpec& spec, double spacing, double inlet_length, float density,
@@ -178,14 +179,14 @@ JetEmitter::JetEmitter(const EmitterSpec& spec, double spacing, double inlet_len
   const Vec3d helper = std::fabs(dir[1]) < 0.9 ? Vec3d{0.0, 1.0, 0.0} : Vec3d{1.0, 0.0, 0.0};
   const Vec3d u = unit(cross(dir, helper));
   const Vec3d w = cross(dir, u);
-  const long n = long(std::ceil(spec_.radius / spacing_));
-  for (long j = -n; j <= n; ++j)
-    for (long i = -n; i <= n; ++i) {
-      // Cell-centred lattice: a square of side 2r holds exactly (2r / d)^2 points.
-      const double a = (double(i) + 0.5) * spacing_, b = (double(j) + 0.5) * spacing_;
-      const bool inside = spec_.section == JetSection::Circle
-                              ? a * a + b * b <= spec_.radius * spec_.radius
-                              : std::fabs(a) <= spec_.radius && std::fabs(b) <= spec_.radius;
+  // A lattice of m = round(2r / d) points across, centred on the axis: a square section gets exactly m^2
+  // points (its flow area (2r)^2 to within one row), a circle the points within r of the axis.
+  const long across = long(std::sqrt(section_candidates(spec_, spacing_)) + 0.5);
+  for (long j = 0; j < across; ++j)
+    for (long i = 0; i < across; ++i) {
+      const double a = (double(i) - 0.5 * double(across - 1)) * spacing_;
+      const double b = (double(j) - 0.5 * double(across - 1)) * spacing_;
+      const bool inside = spec_.section == JetSection::Square || a * a + b * b <= spec_.radius * spec_.radius;
       if (inside) section_.push_back({a * u[0] + b * w[0], a * u[1] + b * w[1], a * u[2] + b * w[2]});
     }
   if (section_.empty()) section_.push_back({0.0, 0.0, 0.0});

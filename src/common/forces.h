@@ -47,26 +47,26 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
   if (c.near_enabled)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
     s += pressure_pair(c.pressure_form, mb, a.near_pressure, a.inv_rho, b.near_pressure, b.inv_rho) * near_dwdr(k, r) * inv_r;
 
-  switch (c.viscosity) {
+  switch (c.viscosity) {  // the laminar viscosity of the fluids' mu
     case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
       acc -= (fa.viscosity * mb * viscosity_laplacian(k, r) * a.inv_rho * b.inv_rho) * vab;
       break;
     case ViscosityModel::Morris:  // Morris 1997: sum m_b (mu_a + mu_b)/(rho_a rho_b) (x_ab.gradW)/(r^2+eps^2) v_ab
       acc += (mb * (fa.viscosity + fb.viscosity) * grad * r2 * a.inv_rho * b.inv_rho / (r2 + eps2)) * vab;
       break;
-    case ViscosityModel::Artificial: {  // thesis eq. 2.20-2.22 (beta = 0), approaching pairs only
-      const float vx = dot(vab, xab);
-      if (vx < 0.0f) {
-        const float mu_ab = k.h * vx / (r2 + eps2);
-        const float alpha = 0.5f * (fa.artificial_alpha + fb.artificial_alpha);
-        const float cbar = 0.5f * (fa.speed_of_sound + fb.speed_of_sound);
-        const float pi_ab = -alpha * cbar * mu_ab / (0.5f * (a.rho + b.rho));
-        s -= mb * pi_ab * grad;
-      }
-      break;
-    }
+    case ViscosityModel::Artificial:
     case ViscosityModel::None:
       break;
+  }
+  if (c.artificial_enabled) {  // thesis eq. 2.20-2.22 (beta = 0), approaching pairs only
+    const float vx = dot(vab, xab);
+    if (vx < 0.0f) {
+      const float mu_ab = k.h * vx / (r2 + eps2);
+      const float alpha = 0.5f * (fa.artificial_alpha + fb.artificial_alpha);
+      const float cbar = 0.5f * (fa.speed_of_sound + fb.speed_of_sound);
+      const float pi_ab = -alpha * cbar * mu_ab / (0.5f * (a.rho + b.rho));
+      s -= mb * pi_ab * grad;
+    }
   }
   acc += s * xab;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <new>
 #include <sstream>
 
@@ -15,12 +16,12 @@
 namespace sph {
 
 double smoothing_length(double spacing, double neighbours) {
-  const double pi = 3.14159265358979323846;
+  const double pi = kPiDouble;
   return std::cbrt(3.0 * neighbours / (4.0 * pi)) * spacing;
 }
 
 double lattice_density_factor(double d, double h) {
-  const double pi = 3.14159265358979323846;
+  const double pi = kPiDouble;
   const double c = 315.0 / (64.0 * pi * std::pow(h, 9));
   const long n = long(std::ceil(h / d));
   double sum = 0.0;
@@ -119,7 +120,7 @@ GridGeometry make_grid(const Scene& scene, const ParticleState& ps, const std::v
 // Volume [m^3] an instant emitter asks for (overlaps with other emitters included).
 double emitter_volume(const EmitterSpec& e) {
   if (e.type == EmitterType::Box) return (e.max[0] - e.min[0]) * (e.max[1] - e.min[1]) * (e.max[2] - e.min[2]);
-  return 4.0 / 3.0 * 3.14159265358979323846 * e.radius * e.radius * e.radius;
+  return 4.0 / 3.0 * kPiDouble * e.radius * e.radius * e.radius;
 }
 
 // Most particles an instant emitter can create, from its index box alone: exact for a box, the volume
@@ -167,6 +168,13 @@ bool report_fill(const Scene& scene, const Lattice& lattice, const SimConstants&
     report.push_back(os.str());
   }
   return adjusted;
+}
+
+// A relative difference as a signed percentage with one decimal ("+3.2%", "+0.0%").
+std::string percent_text(double relative) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.1f%%", std::round(1000.0 * relative) / 10.0 + 0.0);  // -0.0 + 0.0 = +0.0
+  return text;
 }
 
 // Everything but the memory guard of create_setup. `estimate` holds the particle count known so far, for
@@ -224,6 +232,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     if (f.near_stiffness > 0.0) c.near_enabled = 1;
     if (f.surface_tension > 0.0) c.surface_tension_enabled = 1;
     if (f.xsph > 0.0) c.xsph_enabled = 1;
+    if (f.artificial_viscosity > 0.0) c.artificial_enabled = 1;
     s.max_speed_of_sound = std::max(s.max_speed_of_sound, f.speed_of_sound);
   }
   s.viscous_rate = viscous_rate(c, s.spacing, s.h, s.lattice_density);
@@ -259,7 +268,12 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
       throw SceneError(scene.source + ": two jets of fluid \"" + scene.fluids[std::size_t(e.fluid)].name +
                        "\" have different lifetimes; particle lifetime is a property of the fluid");
     fc.lifetime = float(e.lifetime);
-    s.report.push_back(label + ": " + std::to_string(s.jets.back().section_size()) + " particles per layer, inlet " +
+    // The flow the lattice carries against the asked one: section area d^2 per particle.
+    const double asked_area = e.section == JetSection::Square ? 4.0 * e.radius * e.radius : kPiDouble * e.radius * e.radius;
+    const double area = double(s.jets.back().section_size()) * s.spacing * s.spacing;
+    s.report.push_back(label + ": " + std::to_string(s.jets.back().section_size()) + " particles per layer (flow area " +
+                       metres(area) + " m^2, asked " + metres(asked_area) + " m^2: " + percent_text(area / asked_area - 1.0) +
+                       "), inlet " +
                        metres(inlet) + " m (" + std::to_string(s.jets.back().inlet_layers()) + " layers" +
                        (e.start > 0.0 ? ", not prefilled: the jet starts at " + metres(e.start) + " s)" : ", prefilled)"));
   }

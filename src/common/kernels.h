@@ -11,6 +11,7 @@
 namespace sph {
 
 constexpr float kPi = 3.14159265358979323846f;
+constexpr double kPiDouble = 3.14159265358979323846;
 
 // Coefficients depend on h only: computed once per scene, kept in the simulation constants.
 struct KernelCoeffs {

@@ -19,7 +19,10 @@ constexpr float kRemovedAge = 3.0e38f;
 enum class DensityMethod : int32_t { Summation, Continuity };        // thesis eq. 2.10 / 2.12
 enum class EquationOfState : int32_t { Tait, Ideal };                // thesis eq. 2.15 / 2.14
 enum class PressureForm : int32_t { MonaghanSymmetric, Mueller };    // thesis eq. 2.18 / 2.19
-enum class ViscosityModel : int32_t { None, Mueller, Morris, Artificial };  // thesis eq. 2.24 / 2.23 / 2.21
+// The laminar (physical) viscosity, from the fluids' mu: thesis eq. 2.24 (Mueller) or Morris 1997. Artificial
+// names no laminar term (older scenes); Monaghan's artificial viscosity (thesis eq. 2.21) is added to any of
+// them wherever a fluid's alpha > 0 (SimConstants::artificial_enabled).
+enum class ViscosityModel : int32_t { None, Mueller, Morris, Artificial };
 enum class Integrator : int32_t {
   ExplicitEuler,            // thesis eq. 2.29, kept to show where it fails
   SemiImplicitEuler,        // thesis eq. 2.30
@@ -99,6 +102,7 @@ struct SimConstants {
   int32_t near_enabled;             // any fluid with near_stiffness > 0
   int32_t surface_tension_enabled;  // any fluid with surface_tension > 0
   int32_t xsph_enabled;             // any fluid with xsph > 0
+  int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
   Vec3 gravity;
   UserForce user_force;
   int32_t num_fluids;

@@ -24,8 +24,8 @@ struct FluidSpec {
   std::string name = "water";
   double rest_density = 1000.0;    // kg/m^3
   double speed_of_sound = 20.0;    // m/s (numerical, far below water's 1500: thesis 3.2)
-  double viscosity = 1e-3;         // Pa s (Mueller and Morris viscosity)
-  double artificial_viscosity = 0.05; // alpha (Monaghan artificial viscosity, the default sph.viscosity; see Scene)
+  double viscosity = 1e-3;         // mu [Pa s], the laminar viscosity (Mueller or Morris, sph.viscosity)
+  double artificial_viscosity = 0.05; // alpha of Monaghan's artificial viscosity, added to any laminar model; 0 = off
   double near_stiffness = 0.0;     // k_near, m^2/s^2; 0 = no double density relaxation
   double surface_tension = 0.0;    // sigma [N/m], Becker-Teschner cohesion calibrated to it; 0 = off
   double xsph = 0.0;               // XSPH epsilon; 0 = off
@@ -108,9 +108,11 @@ struct Scene {
   // - summation density, Tait, Monaghan's symmetric pressure force (conserves momentum exactly);
   // - negative pressure clamped: kept, it pulls free-surface particles into clumps (tensile instability);
   //   the dam break then exceeds 1.2 times its energy budget within 50 steps, even with the two below;
-  // - Monaghan artificial viscosity, alpha = 0.05 (FluidSpec): with only water's Mueller viscosity nothing
-  //   damps the noise of the kernel pair (below) and even clamped, mirror-walled runs reach 13 times the
-  //   energy available;
+  // - Monaghan artificial viscosity, alpha = 0.05 (FluidSpec), added to every pair whatever the laminar
+  //   model: with only water's laminar viscosity nothing damps the noise of the kernel pair (below) and even
+  //   clamped, mirror-walled runs reach 13 times the energy available;
+  // - the fluids' own viscosity mu through Morris's laminar term (Morris 1997), so a scene's mu always acts
+  //   (with the artificial term alone, honey would flow like water);
   // - mirror walls: penalty walls let a resting column sink 30% in 1 s (mirror_walls.h); mirror walls keep
   //   it within 1% (hydrostatic_tank's alpha 0.2; 1.3% with alpha 0.05, none of it from the walls), and
   //   their ghosts never pull (mirror_walls.h, push_only).
@@ -119,7 +121,7 @@ struct Scene {
   DensityMethod density = DensityMethod::Summation;
   EquationOfState eos = EquationOfState::Tait;
   PressureForm pressure_form = PressureForm::MonaghanSymmetric;
-  ViscosityModel viscosity = ViscosityModel::Artificial;
+  ViscosityModel viscosity = ViscosityModel::Morris;
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)
   Integrator integrator = Integrator::ModifiedVelocityVerlet;

@@ -278,7 +278,12 @@ void Simulation::blow_up(const std::string& what, int32_t particle, double dt) c
   const double c0 = setup_.max_speed_of_sound;
   const double dt_sound = scene_.time_step.cfl_sound * setup_.h / c0;
   const double flow = std::sqrt(2.0 * std::max(0.0, max_specific_in_ - potential_reference_));
-  if (scene_.time_step.mode == TimeStepMode::Fixed && dt > dt_sound) {
+  const double dt_viscous = setup_.viscous_rate > 0.0 ? 2.0 / setup_.viscous_rate : 0.0;  // viscous_limit.h
+  if (scene_.time_step.mode == TimeStepMode::Fixed && dt_viscous > 0.0 && dt > dt_viscous) {
+    os << " Likely cause: the fixed time step " << dt << " s is above the explicit viscous limit 2 / lambda_max = "
+       << dt_viscous << " s of this viscosity (src/common/viscous_limit.h). Use time_step.dt <= "
+       << scene_.time_step.cfl_viscosity * dt_viscous << " s or time_step.mode = \"adaptive\".";
+  } else if (scene_.time_step.mode == TimeStepMode::Fixed && dt > dt_sound) {
     os << " Likely cause: the fixed time step " << dt << " s is above the sound-speed limit cfl_sound h / c0 = "
        << dt_sound << " s. Use a smaller time step (time_step.dt) or time_step.mode = \"adaptive\".";
   } else if (what.find("non-finite") != std::string::npos) {
@@ -295,8 +300,7 @@ void Simulation::blow_up(const std::string& what, int32_t particle, double dt) c
     if (!scene_.clamp_negative_pressure)
       os << " Negative pressure pulls particles into clumps (tensile instability): set sph.negative_pressure = "
             "\"clamp\" or add near pressure (fluids.N.near_stiffness).";
-    if (scene_.viscosity != ViscosityModel::Artificial || !alpha)
-      os << " Nothing damps the noise: set sph.viscosity = \"artificial\" with fluids.N.artificial_viscosity = 0.05.";
+    if (!alpha) os << " Nothing damps the noise: set fluids.N.artificial_viscosity = 0.05 (the default).";
     if (!scene_.mirror_walls) os << " Penalty walls pack particles against the walls: set sph.walls = \"mirror\".";
     os << " A smaller time step (time_step.max or the CFL factors) helps where the step is near its limit.";
   }
