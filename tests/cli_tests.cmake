@@ -239,3 +239,11 @@ if(SPH_HAVE_DEMO)
            WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
   set_tests_properties(cli_demo_no_display PROPERTIES TIMEOUT 120 LABELS cli)
 endif()
+
+# --metrics-every thins the rows but the final state always has its row: the last row's step is the
+# summary's step count.
+add_test(NAME cli_metrics_every_keeps_final_row
+         COMMAND bash -c "set -e; out=$1; rm -rf $out; $0 $2 --set resolution.particles_across=6 --time 0.05 --metrics-every 0.02 --quiet --out $out > $out.txt; steps=$(sed -n 's/^steps: //p' $out.txt); last=$(tail -n 1 $out/metrics.csv | cut -d, -f3); echo \"summary steps $steps, last row step $last\"; [ \"$steps\" = \"$last\" ]"
+                 ${SPH_RUN} ${SPH_CLI_OUT}/metrics_every_final ${SPH_CLI_SCENES}/dam_break.json
+         WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(cli_metrics_every_keeps_final_row PROPERTIES TIMEOUT 120 LABELS cli)

@@ -1,6 +1,8 @@
 #include "metrics_file.h"
 
 #include <cerrno>
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -36,10 +38,25 @@ std::vector<std::string> rows_until_step(const std::string& path, const std::str
 
 }  // namespace
 
-MetricsFile::MetricsFile(std::string path, const std::string& header, long long keep_until_step)
+MetricsFile::MetricsFile(std::string path, const std::string& header, long long keep_until_step, double keep_until_time)
     : path_(std::move(path)) {
   const std::vector<std::string> kept =
       keep_until_step >= 0 ? rows_until_step(path_, header, keep_until_step) : std::vector<std::string>{};
+  if (!kept.empty()) {  // the last kept row must be the frame's step at the frame's time
+    const std::string& last = kept.back();
+    const std::size_t c1 = last.find(','), c2 = last.find(',', c1 + 1), c3 = last.find(',', c2 + 1);
+    const double t = std::strtod(last.c_str(), nullptr);
+    const long long step = std::strtoll(last.c_str() + c2 + 1, nullptr, 10);
+    if (c3 == std::string::npos || step != keep_until_step ||
+        !(std::fabs(t - keep_until_time) <= 1e-8 * std::max(1.0, std::fabs(keep_until_time)))) {
+      std::ostringstream os;
+      os.precision(9);
+      os << path_ << " belongs to another run: its rows up to step " << keep_until_step << " end at step " << step
+         << ", t = " << t << " s, where the frame is at t = " << keep_until_time
+         << " s; continue into another --out folder, or move the file away";
+      throw std::runtime_error(os.str());
+    }
+  }
   continued_ = !kept.empty();
   const std::string target = path_;
   if (continued_) path_ = target + ".tmp";  // the old rows stay intact until the new file holds them

@@ -22,8 +22,11 @@ class MetricsFile {
   // keep_until_step >= 0 (a run continued from a frame of that step): when path already holds rows under
   // the same header, those of steps up to keep_until_step are kept (rewritten through a temporary file and
   // a rename, so an interruption never loses them) and new rows follow; later rows, from the run that was
-  // interrupted, are dropped.
-  MetricsFile(std::string path, const std::string& header, long long keep_until_step = -1);
+  // interrupted, are dropped. The kept rows must end with a row of exactly that step at keep_until_time
+  // [s] (to the 9 digits written); otherwise the file belongs to another run and std::runtime_error is
+  // thrown naming it, and it is left as it is.
+  MetricsFile(std::string path, const std::string& header, long long keep_until_step = -1,
+              double keep_until_time = 0.0);
   ~MetricsFile();  // closes an unclosed file without checking: call close() to learn of errors
   MetricsFile(const MetricsFile&) = delete;
   MetricsFile& operator=(const MetricsFile&) = delete;

@@ -184,7 +184,15 @@ int run(const Options& o) {
   if (ec) throw OutputError("cannot create the output directory " + o.out + ": " + ec.message());
   const std::unique_ptr<Frame> restart = restart_frame(o, scene);
   // A continued run keeps the rows of metrics.csv up to its frame's step and appends after them.
-  MetricsFile csv((fs::path(o.out) / "metrics.csv").string(), kMetricsHeader, restart ? restart->info.step : -1);
+  if (restart && (by_steps ? o.steps <= restart->info.step : run_time <= restart->info.time)) {
+    std::ostringstream os;
+    os << o.restart << ": the frame is at step " << restart->info.step << ", t = " << restart->info.time
+       << " s, already past the end asked (" << (by_steps ? "--steps " + std::to_string(o.steps) : "--time " + std::to_string(run_time))
+       << "); --time and --steps count from the original start";
+    throw SceneError(os.str());
+  }
+  MetricsFile csv((fs::path(o.out) / "metrics.csv").string(), kMetricsHeader, restart ? restart->info.step : -1,
+                  restart ? restart->info.time : 0.0);
 
   Simulation sim = make_simulation(scene, factory, run_time, restart.get());
   check_initial_state(scene, sim);
@@ -219,6 +227,8 @@ int run(const Options& o) {
       if (!restart) write_frame();  // a continued run starts from a frame that already exists
       next_frame = frame_time_after(restart ? restart->info.frame_index : 0, frames_every);
     }
+    long last_row_step = sim.steps();  // the last step metrics.csv has a row for
+    double last_ms = 0.0;
     if (!csv.continued()) write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), 0.0);
     next_metrics = o.metrics_every;
     while (!stop_requested() && (by_steps ? sim.steps() < o.steps : sim.time() < run_time - 1e-12)) {
@@ -234,9 +244,11 @@ int run(const Options& o) {
       const auto t1 = std::chrono::steady_clock::now();
       const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
       step_ms.push_back(ms);
+      last_ms = ms;
       if (sim.time() >= next_metrics - 1e-12) {
         write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), ms);
         next_metrics = sim.time() + o.metrics_every;
+        last_row_step = sim.steps();
       }
       csv.flush_if_due();
       if (frames_every > 0.0 && sim.time() >= next_frame - 1e-12) {
@@ -253,6 +265,9 @@ int run(const Options& o) {
                      sim.backend().size(), 100.0 * frac, eta);
       }
     }
+    // The final state always has its row, whatever --metrics-every skipped (and a blown-up one shows how).
+    if (sim.steps() != last_row_step)
+      write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), last_ms);
     csv.close();
   } catch (const OutputError& e) {
     output_error = e.what();

@@ -134,7 +134,7 @@ struct Scene {
   double run_time = 1.0;         // default simulated time for sph_run
   double frames_every = 0.0;     // 0 = no frames unless asked
   double max_particles = 2e7;
-  double blowup_speed = 0.0;     // 0 = 10 x the largest speed of sound
+  double blowup_speed = 0.0;     // m/s; 0 = max(c0, 2 sqrt(e_max)) from the energy put in (Simulation::speed_bound)
   bool overlap_error = false;    // "on_overlap": fluid placed in a solid is "remove"d (default) or an "error"
   RelaxationSpec relaxation;
   // "initial_state": a frame (frame_writer.h) whose particles replace the instant emitters' fill; jets

@@ -37,6 +37,23 @@ cut -d, -f1-11 "$out/same/metrics.csv" > "$out/same_metrics.txt"
 cmp -s "$out/whole_metrics.txt" "$out/same_metrics.txt" ||
   fail "metrics.csv of the run continued in place differs from the uninterrupted one: $(diff "$out/whole_metrics.txt" "$out/same_metrics.txt" | head -5)"
 
+# A folder holding another run's metrics.csv is refused (its rows would be spliced with this run's), and
+# so is an end (--steps) the frame has already passed; both leave the folder as it was.
+mkdir -p "$out/other"
+"$run" "$scenes/hydrostatic_tank.json" --set resolution.particles_across=6 --steps 30 --quiet --out "$out/other" > /dev/null ||
+  fail "the other run failed"
+cp "$out/other/metrics.csv" "$out/other_metrics_before.csv"
+"$run" "${common[@]}" --restart "$out/whole/frame_00005.ply" --out "$out/other" > /dev/null 2> "$out/other.txt"
+status=$?
+[ "$status" -eq 1 ] || fail "continuing into another run's folder exited with $status, expected 1"
+grep -q "belongs to another run" "$out/other.txt" || fail "no 'belongs to another run' message: $(cat "$out/other.txt")"
+cmp -s "$out/other/metrics.csv" "$out/other_metrics_before.csv" || fail "the other run's metrics.csv was changed"
+"$run" "$scenes/dam_break.json" --set resolution.particles_across=8 --steps 3 --quiet --restart "$out/whole/frame_00005.ply" \
+  --out "$out/past" > /dev/null 2> "$out/past.txt"
+status=$?
+[ "$status" -eq 1 ] || fail "--steps before the frame's step exited with $status, expected 1"
+grep -q "already past the end" "$out/past.txt" || fail "no 'already past the end' message: $(cat "$out/past.txt")"
+
 head -c 3000 "$out/whole/frame_00005.ply" > "$out/truncated.ply"
 for bad in "$out/truncated.ply" "$out/no_such_frame.ply"; do
   "$run" "${common[@]}" --restart "$bad" --out "$out/bad" > /dev/null 2> "$out/bad.txt"
