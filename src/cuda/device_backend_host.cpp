@@ -18,6 +18,9 @@ namespace {
 // they sleep. A step runs dozens of parallel loops, so where the cores also run other work the spinning
 // threads take the time slices the working ones need: on 2 shared cores the dam break ran 25 times slower
 // on host than on the serial cpu back end (issue 10, item 9). Passive waiting (sleep at once) removes that.
+// A short spin instead is not robust: on the 16k dam break with two busy processes beside it, host took
+// 20 ms/step passive, 23 with GOMP_SPINCOUNT=1000 and 53 with 10,000 (once, in a quieter moment, 10,000 beat
+// passive 8.4 to 12.6); beside two niced processes, 9.5 passive, 10.4 to 11.2 (1,000) and 23.6 (10,000).
 //
 // libgomp reads OMP_WAIT_POLICY and GOMP_SPINCOUNT once, in its constructor, before main. The executable's
 // .preinit_array runs before any library's constructor, but a setenv() there is lost: libc's own
