@@ -24,8 +24,14 @@ double finite_option(const std::string& option, const std::string& text, double 
 long long whole_option(const std::string& option, const std::string& text, long long lo, long long hi) {
   const std::string allowed = "allowed whole numbers in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   const std::size_t digits = text.find_first_not_of("+-") == 1 ? 1 : 0;  // one optional sign
-  if (text.size() == digits || text.find_first_not_of("0123456789", digits) != std::string::npos)
-    throw OptionError(option + ": \"" + text + "\" is not a whole number; " + allowed);
+  if (text.size() == digits || text.find_first_not_of("0123456789", digits) != std::string::npos) {
+    // "1e13" is a whole number written as a float: say whether it is out of range rather than not whole.
+    char* end = nullptr;
+    const double x = std::strtod(text.c_str(), &end);
+    if (!text.empty() && *end == '\0' && std::isfinite(x) && x == std::floor(x) && (x < double(lo) || x > double(hi)))
+      throw OptionError(option + ": " + text + " is out of range; " + allowed);
+    throw OptionError(option + ": \"" + text + "\" is not a whole number (write it with digits only); " + allowed);
+  }
   errno = 0;
   const long long n = std::strtoll(text.c_str(), nullptr, 10);
   if (errno == ERANGE || n < lo || n > hi) throw OptionError(option + ": " + text + " is out of range; " + allowed);

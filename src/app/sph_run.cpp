@@ -305,6 +305,7 @@ int run(const Options& o) {
 // Reads the numeric options from their text (see option_values.h); throws OptionError.
 void check_numbers(const CLI::App& app, Options& o, const std::string& time, const std::string& steps,
                    const std::string& frames_every, const std::string& metrics_every) {
+  if (o.out.empty()) throw OptionError("--out: the output directory must be a non-empty path");
   if (app.count("--time")) o.time = finite_option("--time", time, 0.0, kMaxTime, true, "seconds");
   if (app.count("--steps")) o.steps = whole_option("--steps", steps, 1, kMaxSteps);
   if (app.count("--frames-every"))

@@ -297,11 +297,16 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     const std::size_t filled = points.size();
     remove_blocked_points(scene, s.spacing, stats, points, s.report);
     s.adjusted = s.adjusted || points.size() != filled;
+    double mass = 0.0;
     for (const FilledPoint& p : points) {
       const EmitterSpec& e = scene.emitters[std::size_t(p.emitter)];
       s.particles.append(Spawn{f3(p.pos), f3(e.velocity), 0.0f, float(scene.fluids[std::size_t(e.fluid)].rest_density),
                                uint8_t(e.fluid), s.next_id++});
+      mass += double(c.fluids[e.fluid].mass);
     }
+    if (points.size() != filled)
+      s.report.push_back("after the checks: " + std::to_string(points.size()) + " particles, " + metres(mass) +
+                         " kg of fluid");
   }
   for (JetEmitter& j : s.jets)
     for (const Spawn& sp : j.prefill(s.next_id)) s.particles.append(sp);

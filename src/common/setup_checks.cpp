@@ -131,7 +131,7 @@ void check_jet_inlets(const Scene& scene, const std::vector<JetEmitter>& jets, c
           std::ostringstream os;
           os << scene.source << ": " << emitter_label(scene.emitters, e) << ": its inlet, " << jet.inlet_length()
              << " m behind the outlet, crosses " << boundary_label(scene.boundaries, b) << " (the inlet point ("
-             << p[0] << ", " << p[1] << ", " << p[2] << ") lies outside it); move emitters." << e
+             << p[0] << ", " << p[1] << ", " << p[2] << ") lies where the fluid may not be); move emitters." << e
              << ".position at least " << jet.inlet_length() << " m plus the jet's radius away from the boundary, or set a shorter emitters."
              << e << ".inlet_length";
           throw SceneError(os.str());
