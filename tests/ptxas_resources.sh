@@ -42,7 +42,7 @@ awk -v limits="$limits" '
     return f
   }
   function kernel_of(name) {
-    if (match(name, /(for_each_index|static_kernel|DeviceSelectSweepKernel|DeviceReduceSingleTileKernel|DeviceReduceKernel|DeviceScanKernel|transform_kernel)/))
+    if (match(name, /(for_each_index_bounded|for_each_index|static_kernel|DeviceSelectSweepKernel|DeviceReduceSingleTileKernel|DeviceReduceKernel|DeviceScanKernel|transform_kernel)/))
       return substr(name, RSTART, RLENGTH)
     return "kernel"
   }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include <cuda/atomic>
 #include <thrust/count.h>
@@ -37,19 +38,42 @@ namespace SPH_DEVICE_NS {
 
 // One data-parallel loop: f(i) for i in [0, n). A CUDA kernel under nvcc, an OpenMP loop otherwise.
 #if defined(__CUDACC__)
-// The project's own kernel, one thread per index, without __launch_bounds__: with a bound of 256 threads
-// ptxas (sm_90) aims at 80 registers for forces and 64 for density and spills to reach them; Thrust's
-// for_each (two indices per thread, bounded) took 114 for forces and spilled in density.
+// The project's own kernels, one thread per index. Thrust's for_each (two indices per thread, bounded to
+// 256 threads) took forces to 114 registers and spilled in density. A functor may set kBlocksPerSm, the
+// blocks of kBlockThreads that must fit on one SM (__launch_bounds__), which caps its registers at
+// 65536 / (256 kBlocksPerSm); the rest are unbounded. Set only where ptxas then needs no spill
+// (tests/ptxas_resources.sh checks): a bare bound of 256 threads made ptxas aim low and spill.
+constexpr int32_t kBlockThreads = 256;
+
+template <class F, class = void>
+struct BlocksPerSm {
+  static constexpr int value = 0;
+};
+template <class F>
+struct BlocksPerSm<F, std::void_t<decltype(F::kBlocksPerSm)>> {
+  static constexpr int value = F::kBlocksPerSm;
+};
+
 template <class F>
 __global__ void for_each_index(int32_t n, F f) {
   const int32_t i = int32_t(blockIdx.x * blockDim.x + threadIdx.x);
   if (i < n) f(i);
 }
 
+template <class F, int kBlocks>
+__global__ void __launch_bounds__(kBlockThreads, kBlocks) for_each_index_bounded(int32_t n, F f) {
+  const int32_t i = int32_t(blockIdx.x * blockDim.x + threadIdx.x);
+  if (i < n) f(i);
+}
+
 template <class F>
 void launch(int32_t n, const F& f) {
-  constexpr int32_t kBlock = 256;
-  if (n > 0) for_each_index<<<(n + kBlock - 1) / kBlock, kBlock>>>(n, f);
+  if (n <= 0) return;
+  const int32_t blocks = (n + kBlockThreads - 1) / kBlockThreads;
+  if constexpr (BlocksPerSm<F>::value > 0)
+    for_each_index_bounded<F, BlocksPerSm<F>::value><<<blocks, kBlockThreads>>>(n, f);
+  else
+    for_each_index<<<blocks, kBlockThreads>>>(n, f);
 }
 #else
 template <class F>
@@ -102,7 +126,10 @@ struct SortCellFn {
   }
 };
 
+// Occupancy targets of issue 11 (kBlocksPerSm, see launch): density 64 registers (4 blocks of 256 per
+// SM), forces 80 (3 blocks). Ignored by the host build.
 struct DensityFn {
+  static constexpr int kBlocksPerSm = 4;
   ConstantsRef c;
   GridView g;
   ParticleView p;
@@ -117,6 +144,7 @@ struct PressureFn {
 };
 
 struct ForcesFn {
+  static constexpr int kBlocksPerSm = 3;
   ConstantsRef c;
   GridView g;
   ParticleView p;
