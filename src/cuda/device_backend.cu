@@ -1,5 +1,5 @@
-// The device back end: the phases of a step as data-parallel loops (thrust::for_each_n over particle or
-// cell indices), the physics from src/common/, the grid by atomic binning. One source, two builds (see
+// The device back end: the phases of a step as data-parallel loops over particle or cell indices
+// (device_launch.h), the physics from src/common/, the grid by atomic binning. One source, two builds (see
 // device_backend.h): SPH_DEVICE_NS and the factory name are set by the including build.
 //
 // The simulation constants are read from one copy (device_constants.h): the GPU's constant memory under
@@ -9,14 +9,12 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 
 #include <cuda/atomic>
 #include <thrust/count.h>
 #include <thrust/copy.h>
 #include <thrust/execution_policy.h>
 #include <thrust/fill.h>
-#include <thrust/for_each.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/scan.h>
 #include <thrust/transform_reduce.h>
@@ -31,56 +29,11 @@
 #include "device_arrays.h"
 #include "device_constants.h"
 #include "device_faults.h"
+#include "device_launch.h"
 #include "device_backend.h"
 
 namespace sph {
 namespace SPH_DEVICE_NS {
-
-// One data-parallel loop: f(i) for i in [0, n). A CUDA kernel under nvcc, an OpenMP loop otherwise.
-#if defined(__CUDACC__)
-// The project's own kernels, one thread per index. Thrust's for_each (two indices per thread, bounded to
-// 256 threads) took forces to 114 registers and spilled in density. A functor may set kBlocksPerSm, the
-// blocks of kBlockThreads that must fit on one SM (__launch_bounds__), which caps its registers at
-// 65536 / (256 kBlocksPerSm); the rest are unbounded. Set only where ptxas then needs no spill
-// (tests/ptxas_resources.sh checks): a bare bound of 256 threads made ptxas aim low and spill.
-constexpr int32_t kBlockThreads = 256;
-
-template <class F, class = void>
-struct BlocksPerSm {
-  static constexpr int value = 0;
-};
-template <class F>
-struct BlocksPerSm<F, std::void_t<decltype(F::kBlocksPerSm)>> {
-  static constexpr int value = F::kBlocksPerSm;
-};
-
-template <class F>
-__global__ void for_each_index(int32_t n, F f) {
-  const int32_t i = int32_t(blockIdx.x * blockDim.x + threadIdx.x);
-  if (i < n) f(i);
-}
-
-template <class F, int kBlocks>
-__global__ void __launch_bounds__(kBlockThreads, kBlocks) for_each_index_bounded(int32_t n, F f) {
-  const int32_t i = int32_t(blockIdx.x * blockDim.x + threadIdx.x);
-  if (i < n) f(i);
-}
-
-template <class F>
-void launch(int32_t n, const F& f) {
-  if (n <= 0) return;
-  const int32_t blocks = (n + kBlockThreads - 1) / kBlockThreads;
-  if constexpr (BlocksPerSm<F>::value > 0)
-    for_each_index_bounded<F, BlocksPerSm<F>::value><<<blocks, kBlockThreads>>>(n, f);
-  else
-    for_each_index<<<blocks, kBlockThreads>>>(n, f);
-}
-#else
-template <class F>
-void launch(int32_t n, const F& f) {
-  if (n > 0) thrust::for_each_n(thrust::device, thrust::counting_iterator<int32_t>(0), n, f);
-}
-#endif
 
 // ---- phase functors: each calls the shared per-particle code --------------------------------------------
 
