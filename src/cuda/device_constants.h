@@ -39,6 +39,9 @@ struct ConstantsRef {
 // last or the constants changed since.
 class ConstantsOwner {
  public:
+  ConstantsOwner() = default;
+  ConstantsOwner(const ConstantsOwner&) = delete;  // identity matters: it is what bound_ points to
+  ConstantsOwner& operator=(const ConstantsOwner&) = delete;
   ~ConstantsOwner() {
     if (bound_ == this) bound_ = nullptr;  // a later back end at the same address uploads again
   }
