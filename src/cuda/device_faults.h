@@ -6,13 +6,14 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 #include <stdexcept>
 #include <string>
 
 #if defined(__CUDACC__)
 #include <cuda_runtime.h>
 #endif
+
+#include "device_memory.h"
 
 namespace sph {
 namespace SPH_DEVICE_NS {
@@ -52,17 +53,9 @@ inline void check_device_memory(std::size_t particles, std::size_t bytes_per_par
   const cudaError_t status = cudaMemGetInfo(&free_bytes, &total_bytes);
   if (status != cudaSuccess)
     throw std::runtime_error(std::string("cudaMemGetInfo failed: ") + cudaGetErrorString(status));
-  const std::size_t available = free_bytes + held_bytes;
-  const std::size_t needed = particles * bytes_per_particle + grid_bytes;
-  if (needed <= available) return;
-  constexpr double kMiB = 1024.0 * 1024.0;
-  const std::size_t fit = available > grid_bytes ? (available - grid_bytes) / bytes_per_particle : 0;
-  throw std::runtime_error(std::to_string(particles) + " particles need " + std::to_string(int64_t(needed / kMiB)) +
-                           " MiB of GPU memory (" + std::to_string(bytes_per_particle) + " bytes per particle plus " +
-                           std::to_string(int64_t(grid_bytes / kMiB)) + " MiB for the grid), but only " +
-                           std::to_string(int64_t(available / kMiB)) + " MiB of the GPU's " +
-                           std::to_string(int64_t(total_bytes / kMiB)) + " MiB are free: at most " +
-                           std::to_string(fit) + " particles fit; lower the resolution or limits.max_particles");
+  const std::string refusal =
+      device_memory_shortfall(particles, bytes_per_particle, grid_bytes, free_bytes + held_bytes, total_bytes);
+  if (!refusal.empty()) throw std::runtime_error(refusal);
 }
 
 #else
