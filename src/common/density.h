@@ -24,27 +24,38 @@ SPH_HD_ALWAYS_INLINE void density_pair(const SimConstants& c, bool summation, fl
   }
 }
 
-SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a,
-                              float dt) {
+// kSummation as a template parameter: each method's loops hold only what it needs (summation no
+// velocities, continuity no summed density), which keeps the GPU kernel within 64 registers (issue 11).
+template <bool kSummation>
+SPH_HD inline void density_with(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a,
+                                float dt) {
   const KernelCoeffs& k = c.kernel;
   const Vec3 xa = p.pos[a];
-  const Vec3 va = p.vel_force[a];
-  const bool summation = c.density == DensityMethod::Summation;
   float rho = 0.0f, rho_near = 0.0f, drho = 0.0f;
   for_each_candidate(grid, xa, [&](int32_t b) {
     const Vec3 xab = xa - p.pos[b];
     const float r2 = length2(xab);
     if (r2 >= k.h2) return;
-    density_pair(c, summation, c.fluids[p.fluid[b]].mass, xab, r2, va - p.vel_force[b], rho, rho_near, drho);
+    const Vec3 vab = kSummation ? Vec3{0.0f, 0.0f, 0.0f} : p.vel_force[a] - p.vel_force[b];
+    density_pair(c, kSummation, c.fluids[p.fluid[b]].mass, xab, r2, vab, rho, rho_near, drho);
   });
   // Mirror walls: the ghosts of the neighbours, the particle's own included (mirror_walls.h). A second
   // pass, so the loop above stays as lean as without walls.
   const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
-  for_each_ghost(c, grid, p, walls, xa, [&](int32_t b, Vec3 xg, Vec3 vg, float r2) {
-    density_pair(c, summation, c.fluids[p.fluid[b]].mass, xa - xg, r2, va - vg, rho, rho_near, drho);
+  for_each_ghost(c, grid, p, walls, xa, [&](int32_t b, int32_t image, Vec3 xg, float r2) {
+    const Vec3 vab = kSummation ? Vec3{0.0f, 0.0f, 0.0f} : p.vel_force[a] - mirror_velocity(walls, image, p.vel_force[b]);
+    density_pair(c, kSummation, c.fluids[p.fluid[b]].mass, xa - xg, r2, vab, rho, rho_near, drho);
   });
-  p.density[a] = summation ? rho : p.density[a] + dt * drho;
+  p.density[a] = kSummation ? rho : p.density[a] + dt * drho;
   p.near_density[a] = rho_near;
+}
+
+SPH_HD inline void density_of(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a,
+                              float dt) {
+  if (c.density == DensityMethod::Summation)
+    density_with<true>(c, grid, p, a, dt);
+  else
+    density_with<false>(c, grid, p, a, dt);
 }
 
 }  // namespace sph

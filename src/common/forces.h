@@ -107,8 +107,9 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
   // Mirror walls: the ghosts of the neighbours, the particle's own included, add pressure, near pressure and
   // viscosity (mirror_walls.h). A second pass, so the loop above stays as lean as without walls.
   const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
-  for_each_ghost(c, grid, p, walls, xa, [&](int32_t b, Vec3 xg, Vec3 vg, float r2) {
+  for_each_ghost(c, grid, p, walls, xa, [&](int32_t b, int32_t image, Vec3 xg, float r2) {
     if (r2 <= 0.0f) return;  // a ghost on the particle itself: no direction to push along
+    const Vec3 vg = mirror_velocity(walls, image, p.vel_force[b]);
     const float rhob = p.density[b];
     const PairSide ghost{&c.fluids[p.fluid[b]], rhob, 1.0f / rhob, ghost_pressure(c, p.pressure[b], rhob, p.pos[b], xg),
                          p.near_pressure[b]};

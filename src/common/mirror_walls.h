@@ -27,6 +27,10 @@ namespace sph {
 constexpr int kMaxMirrorWalls = 3;
 
 // The walls within h of one particle: reflect(x) = x - 2 (n.x - offset) n, n the unit normal towards the fluid.
+// Every loop over the walls runs over all kMaxMirrorWalls slots and tests i < count, so that each slot is
+// named by a constant index once the loop is unrolled: on a GPU the walls then stay in registers, where a
+// loop up to count (or a write to slot [count]) indexes them at run time and puts them in local memory,
+// a stack frame in every density and forces thread (issue 11, item 1).
 struct NearWalls {
   int32_t count;
   Vec3 normal[kMaxMirrorWalls];
@@ -35,12 +39,13 @@ struct NearWalls {
 };
 
 SPH_HD inline void add_wall(NearWalls& w, Vec3 n, float offset, float slip) {
-  if (w.count < kMaxMirrorWalls) {
-    w.normal[w.count] = n;
-    w.offset[w.count] = offset;
-    w.slip[w.count] = slip;
-    ++w.count;
+  for (int32_t i = 0; i < kMaxMirrorWalls; ++i) {
+    if (i != w.count) continue;
+    w.normal[i] = n;
+    w.offset[i] = offset;
+    w.slip[i] = slip;
   }
+  if (w.count < kMaxMirrorWalls) ++w.count;
 }
 
 SPH_HD inline NearWalls near_walls(const SimConstants& c, Vec3 x) {
@@ -72,19 +77,31 @@ SPH_HD inline NearWalls near_walls(const SimConstants& c, Vec3 x) {
 // Number of images of a neighbour: itself (image 0) and its ghosts, one per non-empty subset of the walls.
 SPH_HD inline int32_t image_count(const NearWalls& w) { return 1 << w.count; }
 
-// Turns (x, v) into its mirror image number `image` >= 1: reflected across each wall whose bit is set.
-SPH_HD inline void mirror_image(const NearWalls& w, int32_t image, Vec3& x, Vec3& v) {
-  for (int32_t i = 0; i < w.count; ++i) {
-    if (!(image & (1 << i))) continue;
+// A position x and a velocity v as their mirror image number `image` >= 1: reflected across each wall
+// whose bit is set. Two functions, so that a ghost's velocity is computed only for a ghost within h, and
+// only by the pairs that use it.
+SPH_HD inline Vec3 mirror_position(const NearWalls& w, int32_t image, Vec3 x) {
+  for (int32_t i = 0; i < kMaxMirrorWalls; ++i) {
+    if (i >= w.count || !(image & (1 << i))) continue;
     const Vec3 n = w.normal[i];
     x -= (2.0f * (dot(x, n) - w.offset[i])) * n;
+  }
+  return x;
+}
+
+SPH_HD inline Vec3 mirror_velocity(const NearWalls& w, int32_t image, Vec3 v) {
+  for (int32_t i = 0; i < kMaxMirrorWalls; ++i) {
+    if (i >= w.count || !(image & (1 << i))) continue;
+    const Vec3 n = w.normal[i];
     const float vn = dot(v, n);
     v = (2.0f * w.slip[i] - 1.0f) * (v - vn * n) - vn * n;
   }
+  return v;
 }
 
-// Calls f(b, x_ghost, v_ghost, r2) for every ghost within h of the particle at xa: each neighbour b's
-// images 1.. across `walls`, r2 = |xa - x_ghost|^2 < h^2. Only neighbours within h can have one.
+// Calls f(b, image, x_ghost, r2) for every ghost within h of the particle at xa: each neighbour b's
+// images 1.. across `walls`, r2 = |xa - x_ghost|^2 < h^2; the ghost's velocity is
+// mirror_velocity(walls, image, v_b). Only neighbours within h can have one.
 template <class F>
 SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                   const NearWalls& walls, Vec3 xa, F&& f) {
@@ -94,10 +111,9 @@ SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, c
     const Vec3 xb = p.pos[b];
     if (length2(xa - xb) >= h2) return;
     for (int32_t image = 1; image < image_count(walls); ++image) {
-      Vec3 xg = xb, vg = p.vel_force[b];
-      mirror_image(walls, image, xg, vg);
+      const Vec3 xg = mirror_position(walls, image, xb);
       const float r2 = length2(xa - xg);
-      if (r2 < h2) f(b, xg, vg, r2);
+      if (r2 < h2) f(b, image, xg, r2);
     }
   });
 }
@@ -107,8 +123,8 @@ SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, c
 // either would pull fluid towards the wall or hold it there. So for each wall the ghost lies behind, the
 // part of its pair term `pair` along that wall's normal is dropped when it points into the wall.
 SPH_HD inline Vec3 push_only(const NearWalls& w, Vec3 x_ghost, Vec3 pair) {
-  for (int32_t i = 0; i < w.count; ++i) {
-    if (dot(x_ghost, w.normal[i]) >= w.offset[i]) continue;  // not reflected across this wall
+  for (int32_t i = 0; i < kMaxMirrorWalls; ++i) {
+    if (i >= w.count || dot(x_ghost, w.normal[i]) >= w.offset[i]) continue;  // not reflected across this wall
     const float along = dot(pair, w.normal[i]);
     if (along < 0.0f) pair -= along * w.normal[i];
   }

@@ -4,19 +4,73 @@
 
 #include <thrust/copy.h>
 #include <thrust/device_vector.h>
+#include <thrust/execution_policy.h>
 #include <thrust/gather.h>
 
 #include "../common/particle_state.h"
 
+#if defined(__CUDACC__)
+#include <cuda_runtime.h>
+
+#include <thrust/system/cuda/execution_policy.h>
+
+#include "cuda_check.h"
+#endif
+
 namespace sph {
 namespace SPH_DEVICE_NS {
 
+#if defined(__CUDACC__)
+// After a kernel fault the CUDA context keeps the error ("sticky"), and every later cudaFree returns it.
+// Thrust's allocators throw on that from noexcept deallocations, so the unwinding that carries the fault
+// to the caller ended in std::terminate (issue 11, item 5). These allocators free without throwing: the
+// fault itself has already been reported, and the context's memory goes with it.
+template <class T>
+struct QuietFreeAllocator : thrust::device_allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = QuietFreeAllocator<U>;
+  };
+  QuietFreeAllocator() = default;
+  template <class U>
+  QuietFreeAllocator(const QuietFreeAllocator<U>&) {}
+  void deallocate(thrust::device_ptr<T> p, std::size_t) noexcept { (void)cudaFree(thrust::raw_pointer_cast(p)); }
+};
+
+template <class T>
+using DeviceVector = thrust::device_vector<T, QuietFreeAllocator<T>>;
+
+// Temporary storage of Thrust's scan, select and reduce (passed as thrust::cuda::par(allocator)), freed
+// without throwing for the same reason.
+struct QuietTemporaryAllocator {
+  using value_type = char;
+  char* allocate(std::ptrdiff_t bytes) {
+    void* p = nullptr;
+    CUDA_CHECK(cudaMalloc(&p, std::size_t(bytes)));
+    return static_cast<char*>(p);
+  }
+  void deallocate(char* p, std::size_t) noexcept { (void)cudaFree(p); }
+};
+
+// Thrust's execution policy for algorithms that need temporary storage.
+inline auto with_temporaries(QuietTemporaryAllocator& a) { return thrust::cuda::par(a); }
+#else
+template <class T>
+using DeviceVector = thrust::device_vector<T>;
+
+struct QuietTemporaryAllocator {};
+inline auto with_temporaries(QuietTemporaryAllocator&) { return thrust::device; }
+#endif
+
 struct DeviceArrays {
-#define SPH_DECLARE_DEVICE_FIELD(type, name) thrust::device_vector<type> name;
+#define SPH_DECLARE_DEVICE_FIELD(type, name) DeviceVector<type> name;
   SPH_PARTICLE_FIELDS(SPH_DECLARE_DEVICE_FIELD)
 #undef SPH_DECLARE_DEVICE_FIELD
 
   std::size_t size() const { return pos.size(); }
+
+  // Bytes of device memory per particle: the fields, in this and in the reordering copy.
+  static constexpr std::size_t kBytesPerParticle = 2 * kParticleFieldBytes;
 
   // Calls f(device_field, other_field) for every field of the list in particle_state.h, where other is a
   // host ParticleState or another DeviceArrays.
@@ -45,7 +99,7 @@ struct DeviceArrays {
     });
   }
   // this[j] = src[index[j]] for every field; this takes index.size() particles.
-  void gather_from(DeviceArrays& src, const thrust::device_vector<int32_t>& index) {
+  void gather_from(DeviceArrays& src, const DeviceVector<int32_t>& index) {
     each(src, [&](auto& dst_field, auto& src_field) {
       dst_field.resize(index.size());
       thrust::gather(index.begin(), index.end(), src_field.begin(), dst_field.begin());

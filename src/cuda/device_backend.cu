@@ -1,9 +1,9 @@
-// The device back end: the phases of a step as data-parallel loops (thrust::for_each_n over particle or
-// cell indices), the physics from src/common/, the grid by atomic binning. One source, two builds (see
+// The device back end: the phases of a step as data-parallel loops over particle or cell indices
+// (device_launch.h), the physics from src/common/, the grid by atomic binning. One source, two builds (see
 // device_backend.h): SPH_DEVICE_NS and the factory name are set by the including build.
 //
-// Kernel parameters live in the GPU's constant bank, so the SimConstants each functor carries by value
-// are the simulation parameters in constant memory, read through the constant cache.
+// The simulation constants are read from one copy (device_constants.h): the GPU's constant memory under
+// nvcc; the functors carry only views, scalars and a ConstantsRef.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,7 +15,6 @@
 #include <thrust/copy.h>
 #include <thrust/execution_policy.h>
 #include <thrust/fill.h>
-#include <thrust/for_each.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/scan.h>
 #include <thrust/transform_reduce.h>
@@ -28,24 +27,21 @@
 #include "../common/pressure.h"
 #include "../render/colour_map.h"
 #include "device_arrays.h"
+#include "device_constants.h"
+#include "device_faults.h"
+#include "device_launch.h"
 #include "device_backend.h"
 
 namespace sph {
 namespace SPH_DEVICE_NS {
 
-// One data-parallel loop: f(i) for i in [0, n). A CUDA kernel under nvcc, an OpenMP loop otherwise.
-template <class F>
-void launch(int32_t n, const F& f) {
-  if (n > 0) thrust::for_each_n(thrust::device, thrust::counting_iterator<int32_t>(0), n, f);
-}
-
 // ---- phase functors: each calls the shared per-particle code --------------------------------------------
 
 struct PredictFn {
-  SimConstants c;
+  ConstantsRef c;
   ParticleView p;
   float dt;
-  SPH_HD void operator()(int32_t i) const { predict_particle(c, p, i, dt); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { predict_particle(*c, p, i, dt); }
 };
 
 // Grid binning: each particle's cell, and its slot in the cell by an atomic increment of the cell count.
@@ -83,39 +79,43 @@ struct SortCellFn {
   }
 };
 
+// Occupancy targets of issue 11 (kBlocksPerSm, see launch): density 64 registers (4 blocks of 256 per
+// SM), forces 80 (3 blocks). Ignored by the host build.
 struct DensityFn {
-  SimConstants c;
+  static constexpr int kBlocksPerSm = 4;
+  ConstantsRef c;
   GridView g;
   ParticleView p;
   float dt;
-  SPH_HD void operator()(int32_t i) const { density_of(c, g, p, i, dt); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { density_of(*c, g, p, i, dt); }
 };
 
 struct PressureFn {
-  SimConstants c;
+  ConstantsRef c;
   ParticleView p;
-  SPH_HD void operator()(int32_t i) const { pressure_of(c, p, i); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { pressure_of(*c, p, i); }
 };
 
 struct ForcesFn {
-  SimConstants c;
+  static constexpr int kBlocksPerSm = 3;
+  ConstantsRef c;
   GridView g;
   ParticleView p;
-  SPH_HD void operator()(int32_t i) const { forces_of(c, g, p, i); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { forces_of(*c, g, p, i); }
 };
 
 struct CorrectFn {
-  SimConstants c;
+  ConstantsRef c;
   ParticleView p;
   float dt;
-  SPH_HD void operator()(int32_t i) const { correct_particle(c, p, i, dt); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { correct_particle(*c, p, i, dt); }
 };
 
 struct BoundariesFn {
-  SimConstants c;
+  ConstantsRef c;
   ParticleView p;
   float dt;
-  SPH_HD void operator()(int32_t i) const { boundaries_of(c, p, i, dt); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { boundaries_of(*c, p, i, dt); }
 };
 
 struct CopyVelocityFn {
@@ -123,10 +123,17 @@ struct CopyVelocityFn {
   SPH_HD void operator()(int32_t i) const { p.vel_force[i] = p.vel[i]; }
 };
 
+// Recycle: whether each particle stays, in a loop of its own, so that the stable selection that follows
+// (CUB's select kernel) reads flags only: with this test as its predicate it spilled registers (ptxas).
 struct KeepFn {
-  SimConstants c;
+  ConstantsRef c;
   ParticleView p;
-  SPH_HD bool operator()(int32_t i) const { return !expired(c.fluids[p.fluid[i]], p.age[i]); }
+  uint8_t* keep;
+  SPH_KERNEL_FN void operator()(int32_t i) const { keep[i] = !expired((*c).fluids[p.fluid[i]], p.age[i]); }
+};
+
+struct IsSetFn {
+  SPH_HD bool operator()(uint8_t flag) const { return flag != 0; }
 };
 
 // Diagnostics as a deterministic reduction: ties go to the lower index, as in the serial reference.
@@ -163,17 +170,17 @@ struct DiagCombineFn {
 // Interop: positions and colours written by a kernel into mapped OpenGL buffers (the same colour maps as
 // the host path, src/render/colour_map.h).
 struct WriteRenderFn {
-  SimConstants c;
+  ConstantsRef c;
   ParticleView p;
   Vec3* positions;
   Vec3* colours;
   int mode;
   float lo, hi;
-  SPH_HD void operator()(int32_t i) const {
+  SPH_KERNEL_FN void operator()(int32_t i) const {
     positions[i] = p.pos[i];
     const Vec3 col = render::particle_colour(render::ColourMode(mode), lo, hi, length(p.vel[i]), p.density[i],
-                                             c.fluids[p.fluid[i]].rest_density, p.pressure[i], p.fluid[i],
-                                             cell_index(c.grid, p.pos[i]));
+                                             (*c).fluids[p.fluid[i]].rest_density, p.pressure[i], p.fluid[i],
+                                             cell_index((*c).grid, p.pos[i]));
     colours[i] = col;
   }
 };
@@ -185,10 +192,18 @@ class DeviceBackend final : public Backend {
   DeviceBackend(const SimConstants& constants, std::string name) : c_(constants), name_(std::move(name)) {}
 
   std::string name() const override { return name_; }
-  void upload(const ParticleState& state) override { d_.upload(state); }
+  void upload(const ParticleState& state) override {
+    run_phase(name_, "upload", [&] {
+      check_memory_for(state.size());
+      d_.upload(state);
+    });
+  }
   std::size_t size() const override { return d_.size(); }
   const PhaseTimes& phase_times() const override { return times_; }
-  void set_constants(const SimConstants& constants) override { c_ = constants; }
+  void set_constants(const SimConstants& constants) override {
+    c_ = constants;
+    constants_.changed();
+  }
 
 #if defined(SPH_DEVICE_GL_INTEROP)
   ~DeviceBackend() override { unregister_gl(); }
@@ -208,7 +223,7 @@ class DeviceBackend final : public Backend {
     std::size_t bytes_pos = 0, bytes_col = 0;
     CUDA_CHECK(cudaGraphicsResourceGetMappedPointer(&pos, &bytes_pos, gl_[0]));
     CUDA_CHECK(cudaGraphicsResourceGetMappedPointer(&col, &bytes_col, gl_[1]));
-    launch(n(), WriteRenderFn{c_, d_.view(), static_cast<Vec3*>(pos), static_cast<Vec3*>(col), b.colour_mode, b.lo, b.hi});
+    launch(n(), WriteRenderFn{constants(), d_.view(), static_cast<Vec3*>(pos), static_cast<Vec3*>(col), b.colour_mode, b.lo, b.hi});
     CUDA_CHECK(cudaGraphicsUnmapResources(2, gl_, 0));  // before OpenGL draws from them
     return true;
   }
@@ -228,22 +243,24 @@ class DeviceBackend final : public Backend {
 #endif
 
   void initialise_forces() override {
-    launch(n(), CopyVelocityFn{d_.view()});
-    build_grid();
-    density(0.0f);
-    pressure();
-    forces();
+    run_phase(name_, "initial forces", [&] {
+      launch(n(), CopyVelocityFn{d_.view()});
+      build_grid();
+      density(0.0f);
+      pressure();
+      forces();
+    });
   }
 
   void step(float dt) override {
-    timed(Phase::Predict, [&] { launch(n(), PredictFn{c_, d_.view(), dt}); });
+    timed(Phase::Predict, [&] { launch(n(), PredictFn{constants(), d_.view(), dt}); });
     timed(Phase::BuildGrid, [&] { build_grid(); });
     timed(Phase::Density, [&] { density(dt); });
     timed(Phase::Pressure, [&] { pressure(); });
     timed(Phase::Forces, [&] { forces(); });
-    timed(Phase::Correct, [&] { launch(n(), CorrectFn{c_, d_.view(), dt}); });
+    timed(Phase::Correct, [&] { launch(n(), CorrectFn{constants(), d_.view(), dt}); });
     timed(Phase::Boundaries, [&] {
-      if (c_.num_shapes > 0) launch(n(), BoundariesFn{c_, d_.view(), dt});
+      if (c_.num_shapes > 0) launch(n(), BoundariesFn{constants(), d_.view(), dt});
     });
     timed(Phase::Recycle, [&] { recycle(); });
     ++times_.steps;
@@ -253,21 +270,24 @@ class DeviceBackend final : public Backend {
     timed(Phase::Emit, [&] {
       ParticleState extra;
       for (const Spawn& s : spawns) extra.append(s);
+      check_memory_for(d_.size() + extra.size());
       d_.append(extra);
     });
   }
 
   const ParticleState& download() override {
-    d_.download(host_);
+    run_phase(name_, "download", [&] { d_.download(host_); });
     return host_;
   }
 
   Diagnostics diagnose() override {
     Diagnostics out;
     if (n() == 0) return out;
-    const Diag r = thrust::transform_reduce(thrust::device, thrust::counting_iterator<int32_t>(0),
-                                            thrust::counting_iterator<int32_t>(n()), DiagOfFn{d_.view()},
-                                            Diag{0.0f, -1, 0.0f, -1}, DiagCombineFn{});
+    Diag r{};
+    run_phase(name_, "diagnostics", [&] {
+      r = thrust::transform_reduce(with_temporaries(temporary_), thrust::counting_iterator<int32_t>(0), thrust::counting_iterator<int32_t>(n()),
+                                   DiagOfFn{d_.view()}, Diag{0.0f, -1, 0.0f, -1}, DiagCombineFn{});
+    });
     out.max_speed = r.max_speed;
     out.fastest = r.fastest;
     out.max_accel = r.max_accel;
@@ -280,10 +300,22 @@ class DeviceBackend final : public Backend {
   int32_t ncells() const { return int32_t(cell_count(c_.grid)); }
   GridView grid_view() const { return GridView{c_.grid, thrust::raw_pointer_cast(cell_start_.data())}; }
 
+  // The constants as the kernels read them, uploaded first if another back end bound them last.
+  ConstantsRef constants() { return constants_.bind(c_); }
+
+  // Refuses, with a message naming the limit, a particle count the device memory cannot hold.
+  void check_memory_for(std::size_t particles) const {
+    // particle_cell_, particle_slot_, order_, keep_ and keep_flag_
+    constexpr std::size_t kIndexBytes = 4 * sizeof(int32_t) + sizeof(uint8_t);
+    const std::size_t per_particle = DeviceArrays::kBytesPerParticle + kIndexBytes;
+    check_device_memory(particles, per_particle, 2 * sizeof(int32_t) * (std::size_t(ncells()) + 1),
+                        d_.size() * per_particle);
+  }
+
   template <class F>
   void timed(Phase p, F&& f) {
     const auto t0 = std::chrono::steady_clock::now();
-    f();
+    run_phase(name_, phase_name(p), f);
     times_.seconds[std::size_t(p)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
@@ -297,7 +329,7 @@ class DeviceBackend final : public Backend {
     launch(count, BinFn{c_.grid, thrust::raw_pointer_cast(d_.pos.data()), thrust::raw_pointer_cast(cell_count_.data()),
                         thrust::raw_pointer_cast(particle_cell_.data()), thrust::raw_pointer_cast(particle_slot_.data())});
     cell_start_.resize(cell_count_.size());
-    thrust::exclusive_scan(thrust::device, cell_count_.begin(), cell_count_.end(), cell_start_.begin());
+    thrust::exclusive_scan(with_temporaries(temporary_), cell_count_.begin(), cell_count_.end(), cell_start_.begin());
     launch(count, ScatterFn{thrust::raw_pointer_cast(cell_start_.data()), thrust::raw_pointer_cast(particle_cell_.data()),
                             thrust::raw_pointer_cast(particle_slot_.data()), thrust::raw_pointer_cast(order_.data())});
     launch(ncells(), SortCellFn{thrust::raw_pointer_cast(cell_start_.data()), thrust::raw_pointer_cast(d_.id.data()),
@@ -306,17 +338,19 @@ class DeviceBackend final : public Backend {
     std::swap(d_, sorted_);
   }
 
-  void density(float dt) { launch(n(), DensityFn{c_, grid_view(), d_.view(), dt}); }
-  void pressure() { launch(n(), PressureFn{c_, d_.view()}); }
-  void forces() { launch(n(), ForcesFn{c_, grid_view(), d_.view()}); }
+  void density(float dt) { launch(n(), DensityFn{constants(), grid_view(), d_.view(), dt}); }
+  void pressure() { launch(n(), PressureFn{constants(), d_.view()}); }
+  void forces() { launch(n(), ForcesFn{constants(), grid_view(), d_.view()}); }
 
   // Keeps the particles that have not expired, in order (a stable compaction: deterministic).
   void recycle() {
     const int32_t count = n();
     if (count == 0) return;
     keep_.resize(std::size_t(count));
-    const auto end = thrust::copy_if(thrust::device, thrust::counting_iterator<int32_t>(0),
-                                     thrust::counting_iterator<int32_t>(count), keep_.begin(), KeepFn{c_, d_.view()});
+    keep_flag_.resize(std::size_t(count));
+    launch(count, KeepFn{constants(), d_.view(), thrust::raw_pointer_cast(keep_flag_.data())});
+    const auto end = thrust::copy_if(with_temporaries(temporary_), thrust::counting_iterator<int32_t>(0),
+                                     thrust::counting_iterator<int32_t>(count), keep_flag_.begin(), keep_.begin(), IsSetFn{});
     const std::ptrdiff_t kept = end - keep_.begin();
     if (kept == count) return;
     keep_.resize(std::size_t(kept));
@@ -325,9 +359,12 @@ class DeviceBackend final : public Backend {
   }
 
   SimConstants c_;
+  ConstantsOwner constants_;
   std::string name_;
   DeviceArrays d_, sorted_;
-  thrust::device_vector<int32_t> cell_count_, cell_start_, particle_cell_, particle_slot_, order_, keep_;
+  QuietTemporaryAllocator temporary_;
+  DeviceVector<int32_t> cell_count_, cell_start_, particle_cell_, particle_slot_, order_, keep_;
+  DeviceVector<uint8_t> keep_flag_;
   ParticleState host_;
   PhaseTimes times_;
 };

@@ -16,7 +16,8 @@ std::unique_ptr<Backend> make_host_backend(const SimConstants& constants);
 // Throws std::runtime_error when no usable GPU is present (the message says why).
 std::unique_ptr<Backend> make_cuda_backend(const SimConstants& constants);
 
-// Whether a CUDA device can be used; otherwise *why says what is missing.
+// Whether CUDA device 0 can be used: present, and this build holds code for its architecture (a probe
+// kernel's attributes can be read); otherwise *why says what is missing.
 bool cuda_device_available(std::string* why);
 
 // The name of CUDA device 0, or "" when there is none.

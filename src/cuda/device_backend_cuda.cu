@@ -13,6 +13,12 @@
 
 namespace sph {
 
+namespace {
+// A kernel that does nothing, built for the same architectures as every other kernel of this file: its
+// attributes can be read only where this build holds code the device can run.
+__global__ void kernel_image_probe() {}
+}  // namespace
+
 bool cuda_device_available(std::string* why) {
   int count = 0;
   const cudaError_t status = cudaGetDeviceCount(&count);
@@ -22,6 +28,25 @@ bool cuda_device_available(std::string* why) {
   }
   if (count == 0) {
     if (why) *why = "no CUDA device found";
+    return false;
+  }
+  // A device the build has no code for (say compute capability 8.0 without sm_80 in
+  // CMAKE_CUDA_ARCHITECTURES) fails here with cudaErrorNoKernelImageForDevice, not in the first step.
+  cudaFuncAttributes attributes{};
+  const cudaError_t image = cudaFuncGetAttributes(&attributes, kernel_image_probe);
+  if (image != cudaSuccess) {
+    (void)cudaGetLastError();  // not a sticky error: clear it
+    if (why) {
+      cudaDeviceProp prop{};
+      const bool named = cudaGetDeviceProperties(&prop, 0) == cudaSuccess;
+      *why = "CUDA device 0" + (named ? " (" + std::string(prop.name) + ", compute capability " + std::to_string(prop.major) +
+                                            "." + std::to_string(prop.minor) + ")"
+                                      : std::string()) +
+             " cannot run this build: " + cudaGetErrorName(image) + " (" + cudaGetErrorString(image) +
+             "); rebuild with its architecture in CMAKE_CUDA_ARCHITECTURES" +
+             (named ? " (-DCMAKE_CUDA_ARCHITECTURES=" + std::to_string(prop.major) + std::to_string(prop.minor) + ")"
+                    : std::string());
+    }
     return false;
   }
   return true;

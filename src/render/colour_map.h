@@ -23,23 +23,42 @@ inline const char* colour_mode_name(ColourMode m) {
   return "?";
 }
 
-// A perceptually ordered dark-blue -> teal -> yellow ramp (after viridis), t in [0, 1].
+// The tables below are switches, not local arrays: a local array indexed at run time takes a stack frame
+// in every thread of the CUDA interop kernel (issue 11, item 1).
+
+// The stops of a perceptually ordered dark-blue -> teal -> yellow ramp (after viridis), i in [0, 4].
+SPH_HD inline Vec3 ramp_stop(int i) {
+  switch (i) {
+    case 0: return {0.27f, 0.00f, 0.33f};
+    case 1: return {0.23f, 0.32f, 0.55f};
+    case 2: return {0.13f, 0.57f, 0.55f};
+    case 3: return {0.37f, 0.79f, 0.38f};
+  }
+  return {0.99f, 0.91f, 0.14f};
+}
+
+// The ramp at t in [0, 1] (clamped), linear between its stops.
 SPH_HD inline Vec3 ramp(float t) {
   t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
-  const Vec3 stops[5] = {{0.27f, 0.00f, 0.33f}, {0.23f, 0.32f, 0.55f}, {0.13f, 0.57f, 0.55f},
-                         {0.37f, 0.79f, 0.38f}, {0.99f, 0.91f, 0.14f}};
   const float x = t * 4.0f;
   int i = int(x);
   if (i > 3) i = 3;
   const float f = x - float(i);
-  return (1.0f - f) * stops[i] + f * stops[i + 1];
+  return (1.0f - f) * ramp_stop(i) + f * ramp_stop(i + 1);
 }
 
 // Distinct colours for fluids (water blue first).
 SPH_HD inline Vec3 fluid_colour(int fluid) {
-  const Vec3 palette[8] = {{0.16f, 0.45f, 0.85f}, {0.90f, 0.45f, 0.15f}, {0.30f, 0.75f, 0.35f}, {0.80f, 0.25f, 0.55f},
-                           {0.95f, 0.80f, 0.20f}, {0.45f, 0.35f, 0.85f}, {0.20f, 0.75f, 0.80f}, {0.60f, 0.60f, 0.60f}};
-  return palette[fluid & 7];
+  switch (fluid & 7) {
+    case 0: return {0.16f, 0.45f, 0.85f};
+    case 1: return {0.90f, 0.45f, 0.15f};
+    case 2: return {0.30f, 0.75f, 0.35f};
+    case 3: return {0.80f, 0.25f, 0.55f};
+    case 4: return {0.95f, 0.80f, 0.20f};
+    case 5: return {0.45f, 0.35f, 0.85f};
+    case 6: return {0.20f, 0.75f, 0.80f};
+  }
+  return {0.60f, 0.60f, 0.60f};
 }
 
 // A hash colour per grid cell, to see the binning.
