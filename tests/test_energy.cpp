@@ -29,6 +29,16 @@ std::string default_dam_break(int particles_across, const std::string& sph_block
     "time_step": { "mode": "adaptive", "dt": 1e-4, "max": 1e-3 } })";
 }
 
+// Runs until t_end; the BlowUp message, or "" when the run stays stable.
+std::string blow_up_message(sph::Simulation& sim, double t_end) {
+  try {
+    while (sim.time() < t_end) sim.advance();
+  } catch (const sph::BlowUp& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace
 
 TEST_CASE("energy: the lowest reachable level and the budget of a column at rest", "[energy]") {
@@ -112,18 +122,12 @@ TEST_CASE("energy: with the default methods the fluid's own viscosity acts", "[e
 
 TEST_CASE("energy: a method set that creates energy is stopped with the energy message", "[energy]") {
   // The old defaults: negative pressure kept, Mueller viscosity of water only (no artificial viscosity),
-  // penalty walls. The column
-  // gains energy within a few dozen steps (KE 60 J against a 0.98 J budget when left to run).
+  // penalty walls. The column gains energy within a few dozen steps (KE 60 J against a 0.98 J budget when left to run).
   const std::string old_methods =
       R"( "sph": { "viscosity": "mueller", "negative_pressure": "keep", "walls": "penalty" },)";
   sph::Simulation sim(sph::parse_scene(default_dam_break(10, old_methods), "dam.json", {"fluids.0.artificial_viscosity=0"}),
                       cpu_factory(), 0.3);
-  std::string message;
-  try {
-    while (sim.time() < 0.3) sim.advance();
-  } catch (const sph::BlowUp& e) {
-    message = e.what();
-  }
+  const std::string message = blow_up_message(sim, 0.3);
   INFO(message);
   REQUIRE_FALSE(message.empty());
   CHECK(sim.time() < 0.05);  // caught early, not at the end
@@ -143,12 +147,7 @@ TEST_CASE("energy: a flow faster than c0 / 10 is told to raise the speed of soun
                                       {"fluids.0.speed_of_sound=1.5", "limits.blowup_speed=1"});
   sph::Simulation sim(scene, cpu_factory(), 0.3);
   CHECK(sim.speed_bound() == 1.0);
-  std::string message;
-  try {
-    while (sim.time() < 0.3) sim.advance();
-  } catch (const sph::BlowUp& e) {
-    message = e.what();
-  }
+  const std::string message = blow_up_message(sim, 0.3);
   INFO(message);
   REQUIRE_FALSE(message.empty());
   CHECK(message.find("above the speed bound 1 m/s (limits.blowup_speed)") != std::string::npos);
