@@ -33,20 +33,31 @@ SPH_HD inline void penalty_response(const Shape& s, Vec3 n, float depth, Vec3& x
   reflect_velocity(s, n, depth, v, dt, g);
 }
 
-SPH_HD inline float quadric_value(const float* q, Vec3 p) {
-  const float h[4] = {p.x, p.y, p.z, 1.0f};
-  float f = 0.0f;
+// f = h^T Q h at h = (x, y, z, 1), in the precision T (float in the solver, double in the set-up checks).
+template <class T>
+SPH_HD inline T quadric_form(const float* q, T x, T y, T z) {
+  const T h[4] = {x, y, z, T(1)};
+  T f = T(0);
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) f += h[i] * q[4 * i + j] * h[j];
+    for (int j = 0; j < 4; ++j) f += h[i] * T(q[4 * i + j]) * h[j];
   return f;
 }
 
-// grad f = 2 Q_sub p (seed 000, eq. 23): the first three rows of Q times the homogeneous point.
+// grad f = 2 Q_sub h (seed 000, eq. 23): the first three rows of Q times the homogeneous point.
+template <class T>
+SPH_HD inline void quadric_form_gradient(const float* q, T x, T y, T z, T g[3]) {
+  const T h[4] = {x, y, z, T(1)};
+  for (int i = 0; i < 3; ++i) {
+    g[i] = T(0);
+    for (int j = 0; j < 4; ++j) g[i] += T(2) * T(q[4 * i + j]) * h[j];
+  }
+}
+
+SPH_HD inline float quadric_value(const float* q, Vec3 p) { return quadric_form(q, p.x, p.y, p.z); }
+
 SPH_HD inline Vec3 quadric_gradient(const float* q, Vec3 p) {
-  const float h[4] = {p.x, p.y, p.z, 1.0f};
-  float g[3] = {0.0f, 0.0f, 0.0f};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 4; ++j) g[i] += 2.0f * q[4 * i + j] * h[j];
+  float g[3];
+  quadric_form_gradient(q, p.x, p.y, p.z, g);
   return {g[0], g[1], g[2]};
 }
 

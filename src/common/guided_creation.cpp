@@ -318,13 +318,16 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
                      " m once the particles inside solids are removed");
 
   c.grid = make_grid(scene, s.particles, s.jets, s.h, s.expected_particles);
-  // Weakly compressible SPH assumes flow speeds well below c0; ten times c0 (or a jet's speed) is a blow-up.
-  double fastest = s.max_speed_of_sound;
-  for (const JetEmitter& j : s.jets) fastest = std::max(fastest, j.spec().speed);
-  s.blowup_speed = scene.blowup_speed > 0.0 ? scene.blowup_speed : 10.0 * fastest;
+  s.blowup_speed = fallback_blowup_speed(scene, s.max_speed_of_sound, s.jets);
 }
 
 }  // namespace
+
+double fallback_blowup_speed(const Scene& scene, double max_speed_of_sound, const std::vector<JetEmitter>& jets) {
+  double fastest = max_speed_of_sound;
+  for (const JetEmitter& j : jets) fastest = std::max(fastest, j.spec().speed);
+  return scene.blowup_speed > 0.0 ? scene.blowup_speed : 10.0 * fastest;
+}
 
 Setup create_setup(const Scene& scene, double run_time) {
   Setup s;

@@ -44,6 +44,11 @@ double lattice_density_factor(double spacing, double h);
 // physical sigma [N/m] of the scene maps to kappa = sigma m / (0.005127 rho0^2 h^3).
 double cohesion_from_surface_tension(double sigma, double mass, double rest_density, double h);
 
+// The speed bound when the energy check cannot give one (a user force doing work) [m/s]:
+// limits.blowup_speed, or ten times the fastest of the speeds of sound and the jets (weakly compressible
+// SPH assumes flow speeds well below c0).
+double fallback_blowup_speed(const Scene& scene, double max_speed_of_sound, const std::vector<JetEmitter>& jets);
+
 // Throws SceneError when the scene cannot be set up: an emitter holds no lattice point, a jet's inlet
 // crosses a boundary, fluid lies in a solid with "on_overlap": "error", a derived quantity leaves single
 // precision's range, the particles (counted before anything is allocated) exceed limits.max_particles or

@@ -57,7 +57,7 @@ Metrics measure(const SimConstants& c, const ParticleState& ps, double potential
     const FluidConstants& f = c.fluids[ps.fluid[i]];
     const Vec3 v = ps.vel[i];
     const double v2 = double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z;
-    m.kinetic_energy += 0.5 * f.mass * v2;
+    m.kinetic_energy += particle_kinetic_energy(c, ps, i);
     m.potential_energy += f.mass * (specific_potential(c, ps.pos[i]) - potential_reference);
     m.momentum[0] += double(f.mass) * v.x;
     m.momentum[1] += double(f.mass) * v.y;

@@ -27,6 +27,12 @@ struct Metrics {
 Metrics measure(const SimConstants& c, const ParticleState& ps, double potential_reference = 0.0);
 
 // Specific potential energy of gravity at x: phi = -g.x [J/kg] (g.h above the origin for g along -y).
+// 1/2 m v^2 [J] of particle i (double precision: sums over millions of particles).
+inline double particle_kinetic_energy(const SimConstants& c, const ParticleState& ps, std::size_t i) {
+  const Vec3 v = ps.vel[i];
+  return 0.5 * c.fluids[ps.fluid[i]].mass * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
+}
+
 inline double specific_potential(const SimConstants& c, Vec3 x) {
   return -(double(c.gravity.x) * x.x + double(c.gravity.y) * x.y + double(c.gravity.z) * x.z);
 }

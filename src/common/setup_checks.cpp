@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "boundaries.h"
 
 namespace sph {
 
@@ -57,15 +58,10 @@ double boundary_clearance(const Shape& s, const Vec3d& p) {
       const double dist = length(minus(p, d3(s.a)));
       return s.keep_inside ? double(s.radius) - dist : dist - double(s.radius);
     }
-    case ShapeType::Quadric: {
-      // f = h^T Q h with h = (p, 1); grad f = 2 Q_sub h (seed 000, eq. 23), in double.
-      const double h[4] = {p[0], p[1], p[2], 1.0};
-      double f = 0.0, g[3] = {0.0, 0.0, 0.0};
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-          f += h[i] * double(s.q[4 * i + j]) * h[j];
-          if (i < 3) g[i] += 2.0 * double(s.q[4 * i + j]) * h[j];
-        }
+    case ShapeType::Quadric: {  // first-order distance f / |grad f|, in double (boundaries.h)
+      const double f = quadric_form(s.q, p[0], p[1], p[2]);
+      double g[3];
+      quadric_form_gradient(s.q, p[0], p[1], p[2], g);
       const double gl = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
       if (gl > 0.0) return f / gl;
       return f >= 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();

@@ -180,9 +180,7 @@ void Simulation::set_constants(const SimConstants& constants) {
     c_max = std::max(c_max, double(constants.fluids[f].speed_of_sound));
   setup_.max_speed_of_sound = c_max;
   setup_.viscous_rate = viscous_rate(constants, setup_.spacing, setup_.h, setup_.lattice_density);
-  double fastest = c_max;  // as guided creation: 10 times the fastest of c0 and the jets
-  for (const JetEmitter& j : setup_.jets) fastest = std::max(fastest, j.spec().speed);
-  setup_.blowup_speed = scene_.blowup_speed > 0.0 ? scene_.blowup_speed : 10.0 * fastest;
+  setup_.blowup_speed = fallback_blowup_speed(scene_, c_max, setup_.jets);
   backend_->set_constants(constants);
   if (gravity_changed || force_released) rebase_energy(backend_->download());
 }
@@ -245,10 +243,7 @@ void Simulation::check_energy(double dt) {
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (!floor_bounded_)  // falling for ever: the lowest level reached so far is the floor
       potential_reference_ = std::min(potential_reference_, specific_potential(setup_.constants, ps.pos[i]));
-    if (ps.age[i] < 0.0f) continue;
-    const Vec3 v = ps.vel[i];
-    const double v2 = double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z;
-    kinetic += 0.5 * setup_.constants.fluids[ps.fluid[i]].mass * v2;
+    if (ps.age[i] >= 0.0f) kinetic += particle_kinetic_energy(setup_.constants, ps, i);
   }
   if (kinetic <= energy_limit()) return;
   std::ostringstream os;
