@@ -18,6 +18,9 @@ namespace sph {
 
 enum class Phase : int { Predict, BuildGrid, Density, Pressure, Forces, Correct, Boundaries, Recycle, Emit, Count };
 const char* phase_name(Phase p);
+// The phases of step(dt), in the order it runs them.
+constexpr Phase kStepPhases[] = {Phase::Predict, Phase::BuildGrid, Phase::Density,    Phase::Pressure,
+                                 Phase::Forces,  Phase::Correct,   Phase::Boundaries, Phase::Recycle};
 
 // Accumulated wall time per phase, for the runner's summary, the benchmark and the demo panel.
 struct PhaseTimes {
@@ -49,7 +52,11 @@ class Backend {
   virtual std::string name() const = 0;
   virtual void upload(const ParticleState& state) = 0;   // replaces the particles
   virtual void initialise_forces() = 0;                   // accelerations of the uploaded state, no motion
-  virtual void step(float dt) = 0;
+  virtual void step(float dt) = 0;                        // the phases of kStepPhases, in order
+  // Runs one phase of kStepPhases alone, exactly as step(dt) runs it, so that tests can compare back ends
+  // phase by phase; step(dt) is step_phase(p, dt) for each p in order, and each is timed as in a step.
+  // Throws std::invalid_argument for Phase::Emit or Phase::Count.
+  virtual void step_phase(Phase p, float dt) = 0;
   virtual void emit(const std::vector<Spawn>& spawns) = 0;
   virtual const ParticleState& download() = 0;            // current particles, in the back end's order
   virtual std::size_t size() const = 0;

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "../common/boundaries.h"
 #include "../common/density.h"
@@ -24,15 +26,27 @@ void timed(PhaseTimes& t, Phase p, F&& f) {
 }  // namespace
 
 void CpuBackend::step(float dt) {
-  timed(times_, Phase::Predict, [&] { predict(dt); });        // integrator: move to where forces are evaluated
-  timed(times_, Phase::BuildGrid, [&] { build_grid(); });     // counting sort by cell, reorder all arrays
-  timed(times_, Phase::Density, [&] { density(dt); });        // density and near density
-  timed(times_, Phase::Pressure, [&] { pressure(); });        // equation of state, near pressure
-  timed(times_, Phase::Forces, [&] { forces(); });            // pressure, viscosity, surface tension, gravity
-  timed(times_, Phase::Correct, [&] { correct(dt); });        // integrator: finish the step
-  timed(times_, Phase::Boundaries, [&] { boundaries(dt); });  // penalty boundaries
-  timed(times_, Phase::Recycle, [&] { recycle(); });          // remove particles past their lifetime
+  for (const Phase p : kStepPhases) step_phase(p, dt);
   ++times_.steps;
+}
+
+void CpuBackend::step_phase(Phase p, float dt) {
+  if (p == Phase::Emit || p == Phase::Count)
+    throw std::invalid_argument(std::string("cpu: ") + phase_name(p) + " is not a phase of a step");
+  timed(times_, p, [&] {
+    switch (p) {
+      case Phase::Predict: predict(dt); return;        // integrator: move to where forces are evaluated
+      case Phase::BuildGrid: build_grid(); return;     // counting sort by cell, reorder all arrays
+      case Phase::Density: density(dt); return;        // density and near density
+      case Phase::Pressure: pressure(); return;        // equation of state, near pressure
+      case Phase::Forces: forces(); return;            // pressure, viscosity, surface tension, gravity
+      case Phase::Correct: correct(dt); return;        // integrator: finish the step
+      case Phase::Boundaries: boundaries(dt); return;  // penalty boundaries
+      case Phase::Recycle: recycle(); return;          // remove particles past their lifetime
+      case Phase::Emit:
+      case Phase::Count: return;                       // refused above
+    }
+  });
 }
 
 void CpuBackend::initialise_forces() {

@@ -17,6 +17,7 @@ class CpuBackend final : public Backend {
   void upload(const ParticleState& state) override { s_ = state; }
   void initialise_forces() override;
   void step(float dt) override;
+  void step_phase(Phase p, float dt) override;
   void emit(const std::vector<Spawn>& spawns) override;
   const ParticleState& download() override { return s_; }
   std::size_t size() const override { return s_.size(); }

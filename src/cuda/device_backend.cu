@@ -253,17 +253,29 @@ class DeviceBackend final : public Backend {
   }
 
   void step(float dt) override {
-    timed(Phase::Predict, [&] { launch(n(), PredictFn{constants(), d_.view(), dt}); });
-    timed(Phase::BuildGrid, [&] { build_grid(); });
-    timed(Phase::Density, [&] { density(dt); });
-    timed(Phase::Pressure, [&] { pressure(); });
-    timed(Phase::Forces, [&] { forces(); });
-    timed(Phase::Correct, [&] { launch(n(), CorrectFn{constants(), d_.view(), dt}); });
-    timed(Phase::Boundaries, [&] {
-      if (c_.num_shapes > 0) launch(n(), BoundariesFn{constants(), d_.view(), dt});
-    });
-    timed(Phase::Recycle, [&] { recycle(); });
+    for (const Phase p : kStepPhases) step_phase(p, dt);
     ++times_.steps;
+  }
+
+  void step_phase(Phase p, float dt) override {
+    if (p == Phase::Emit || p == Phase::Count)
+      throw std::invalid_argument(name_ + ": " + phase_name(p) + " is not a phase of a step");
+    timed(p, [&] {
+      switch (p) {
+        case Phase::Predict: launch(n(), PredictFn{constants(), d_.view(), dt}); return;
+        case Phase::BuildGrid: build_grid(); return;
+        case Phase::Density: density(dt); return;
+        case Phase::Pressure: pressure(); return;
+        case Phase::Forces: forces(); return;
+        case Phase::Correct: launch(n(), CorrectFn{constants(), d_.view(), dt}); return;
+        case Phase::Boundaries:
+          if (c_.num_shapes > 0) launch(n(), BoundariesFn{constants(), d_.view(), dt});
+          return;
+        case Phase::Recycle: recycle(); return;
+        case Phase::Emit:
+        case Phase::Count: return;  // refused above
+      }
+    });
   }
 
   void emit(const std::vector<Spawn>& spawns) override {
