@@ -45,6 +45,18 @@ TEST_CASE("device shapes: box container (open top, energy-conserving), box, sphe
   compare_last_step(*ref);
 }
 
+TEST_CASE("device shapes: a sphere container with energy-conserving bouncing walls", "[device][shapes]") {
+  std::unique_ptr<sph::Simulation> ref;
+  const Contacts seen = compare_runs(device_scene("sphere_tank.json"), 200, &ref);
+  const sph::Shape& tank = ref->setup().constants.shapes[0];
+  REQUIRE(tank.type == sph::ShapeType::Sphere);
+  REQUIRE(tank.keep_inside == 1);
+  REQUIRE(tank.energy_conserving == 1);
+  INFO("particle-steps with a hit " << seen.hits[0]);
+  CHECK(seen.hits[0] > 0);
+  compare_last_step(*ref);
+}
+
 TEST_CASE("device shapes: jets with recycling by age and by an absorbing plane", "[device][shapes]") {
   const sph::Scene scene = device_scene("jet.json");
   std::unique_ptr<sph::Simulation> ref;
