@@ -1,7 +1,8 @@
-// Uniform grid (src/common/grid.h, CpuBackend::build_grid): the neighbour sets found through the grid equal
-// an O(N^2) brute force, for reach 1 and 2, uniform and clustered particles, particles far outside the grid
-// (clamped into its border cells), empty regions and an empty particle set; and the sorted layout is
-// consistent (cell_start monotone, ends at N, every particle inside its own cell's range, no particle lost).
+// Neighbour grid (src/common/grid.h, grid_build.h, CpuBackend::build_grid): the neighbour sets found through
+// the grid equal an O(N^2) brute force, for uniform and clustered particles, particles far outside the
+// domain (beyond the keys' range they share border cells), empty regions and an empty particle set; and the
+// sorted layout is consistent (ascending (key, id), every particle inside its own cell's range of its
+// block's table, tables monotone, no particle lost).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -21,13 +22,12 @@ namespace {
 
 using sph::Vec3;
 
-sph::SimConstants make_constants(double h, Vec3 origin, float cell_size, int32_t reach, int32_t nx, int32_t ny,
-                                 int32_t nz) {
+sph::SimConstants make_constants(double h, Vec3 origin, int32_t nx, int32_t ny, int32_t nz) {
   sph::SimConstants c{};
   c.kernel = sph::make_kernel_coeffs(h);
   c.grid.origin = origin;
-  c.grid.cell_size = cell_size;
-  c.grid.reach = reach;
+  c.grid.cell_size = float(h) / sph::kGridReach;
+  c.grid.reach = sph::kGridReach;
   c.grid.nx = nx;
   c.grid.ny = ny;
   c.grid.nz = nz;
@@ -74,18 +74,20 @@ std::size_t check_grid(const sph::SimConstants& c, const std::vector<Vec3>& posi
   }
   for (std::size_t i = 0; i < n; ++i) REQUIRE(seen[i] == 1);
 
-  // cell_start: starts at 0, monotone, ends at N; every particle lies in its own cell's range.
-  const int64_t ncells = sph::cell_count(g);
-  REQUIRE(view.cell_start[0] == 0);
-  for (int64_t cell = 0; cell < ncells; ++cell) REQUIRE(view.cell_start[cell] <= view.cell_start[cell + 1]);
-  REQUIRE(view.cell_start[ncells] == int32_t(n));
+  // Keys ascending by (key, id), each particle's key its cell's, inside its cell's range of its block's table.
   for (std::size_t i = 0; i < n; ++i) {
-    const int32_t cell = sph::cell_index(g, s.pos[i]);
-    REQUIRE(cell >= 0);
-    REQUIRE(cell < ncells);
-    INFO("particle " << i << " in cell " << cell);
-    REQUIRE(view.cell_start[cell] <= int32_t(i));
-    REQUIRE(int32_t(i) < view.cell_start[cell + 1]);
+    INFO("particle " << i);
+    REQUIRE(view.key[i] == sph::cell_key(g, s.pos[i]));
+    if (i > 0) {
+      REQUIRE(view.key[i - 1] <= view.key[i]);
+      if (view.key[i - 1] == view.key[i]) REQUIRE(s.id[i - 1] < s.id[i]);
+    }
+    const int32_t* table = view.cell_start + int64_t(view.particle_block[i]) * sph::kBlockTable;
+    const uint64_t local = view.key[i] & sph::kLocalMask;
+    REQUIRE(table[local] <= int32_t(i));
+    REQUIRE(int32_t(i) < table[local + 1]);
+    for (int32_t l = 0; l < sph::kCellsPerBlock; ++l) REQUIRE(table[l] <= table[l + 1]);
+    REQUIRE(view.block_neighbours[int64_t(view.particle_block[i]) * sph::kBlockNeighbours + 13] == view.particle_block[i]);
   }
 
   // Neighbour sets by id: grid against brute force.
@@ -93,11 +95,15 @@ std::size_t check_grid(const sph::SimConstants& c, const std::vector<Vec3>& posi
   std::vector<int32_t> visited;
   for (std::size_t a = 0; a < n; ++a) {
     const Vec3 pa = s.pos[a];
-    std::set<int32_t> from_grid;
+    std::set<int32_t> from_grid, from_neighbour_loop;
     visited.clear();
-    sph::for_each_candidate(view, pa, [&](int32_t b) {
+    sph::for_each_candidate(view, int32_t(a), [&](int32_t b) {
       visited.push_back(b);
       if (within(pa, s.pos[std::size_t(b)], h)) from_grid.insert(s.id[std::size_t(b)]);
+    });
+    sph::for_each_neighbour(view, s.pos.data(), int32_t(a), c.kernel.h2, [&](int32_t b, Vec3 xab, float r2) {
+      REQUIRE(r2 == sph::length2(xab));
+      from_neighbour_loop.insert(s.id[std::size_t(b)]);
     });
     std::set<int32_t> brute;
     for (std::size_t b = 0; b < n; ++b)
@@ -105,6 +111,7 @@ std::size_t check_grid(const sph::SimConstants& c, const std::vector<Vec3>& posi
     INFO("particle id " << s.id[a] << " at (" << pa.x << ", " << pa.y << ", " << pa.z << "): grid finds "
                         << from_grid.size() << " neighbours, brute force " << brute.size());
     REQUIRE(from_grid == brute);
+    REQUIRE(from_neighbour_loop == brute);
     // Every candidate is a valid index, visited once.
     std::sort(visited.begin(), visited.end());
     REQUIRE(std::adjacent_find(visited.begin(), visited.end()) == visited.end());
@@ -131,14 +138,12 @@ struct GridCase {
   sph::SimConstants constants;
 };
 
-// The same domain [origin, origin + (1.0, 0.8, 0.6)] at reach 1 (cells of h), reach 2 (cells of h/2) and
-// reach 1 with cells wider than h.
+// The same domain [origin, origin + (1.0, 0.8, 0.6)] with h = 0.1 and with h = 0.037 (cells of h / 2 whose
+// boundaries fall elsewhere; blocks 2.4 h and 1.2 h wide).
 std::vector<GridCase> grid_cases(double h, Vec3 origin) {
-  const float hf = float(h);
   return {
-      {"reach 1", make_constants(h, origin, hf, 1, 10, 8, 6)},
-      {"reach 2", make_constants(h, origin, 0.5f * hf, 2, 20, 16, 12)},
-      {"reach 1, cells 1.3 h", make_constants(h, origin, 1.3f * hf, 1, 8, 7, 5)},
+      {"h", make_constants(h, origin, 20, 16, 12)},
+      {"0.37 h", make_constants(0.37 * h, origin, 54, 44, 33)},
   };
 }
 
@@ -151,7 +156,7 @@ TEST_CASE("grid neighbour sets equal brute force: uniform random particles", "[g
     INFO(gc.name);
     std::mt19937 rng(12345);
     const std::vector<Vec3> p = uniform(rng, 1500, origin, Vec3{origin.x + 1.0f, origin.y + 0.8f, origin.z + 0.6f});
-    CHECK(check_grid(gc.constants, p) > 1500);  // about 2 neighbours a particle: the case is not vacuous
+    CHECK(check_grid(gc.constants, p) > 800);  // 2 (h) and 0.66 (0.37 h) neighbours a particle: not vacuous
   }
 }
 
@@ -178,15 +183,17 @@ TEST_CASE("grid neighbour sets equal brute force: clustered particles", "[grid]"
       const Vec3 lo{3.01f * cell, 2.01f * cell, 1.01f * cell}, hi{3.99f * cell, 2.99f * cell, 1.99f * cell};
       const std::vector<Vec3> p = uniform(rng, 600, lo, hi);
       const sph::SimConstants& c = gc.constants;
-      const int32_t only = sph::cell_index(c.grid, 3, 2, 1);
-      for (const Vec3& q : p) REQUIRE(sph::cell_index(c.grid, q) == only);
+      const uint64_t only = sph::cell_key(c.grid, lo);
+      for (const Vec3& q : p) REQUIRE(sph::cell_key(c.grid, q) == only);
       CHECK(check_grid(c, p) > 0);
       sph::CpuBackend backend(c);
       backend.upload(make_state(p));
       backend.build_grid();
       const sph::GridView view = backend.grid_view();
-      CHECK(view.cell_start[only] == 0);
-      CHECK(view.cell_start[only + 1] == 600);
+      const int32_t* table = view.cell_start;  // the only block
+      CHECK(view.particle_block[599] == 0);
+      CHECK(table[only & sph::kLocalMask] == 0);
+      CHECK(table[(only & sph::kLocalMask) + 1] == 600);
     }
   }
 }
@@ -213,9 +220,12 @@ TEST_CASE("grid neighbour sets equal brute force: particles far outside the grid
             append(p, uniform(rng, 15, centre - Vec3{0.04f, 0.04f, 0.04f}, centre + Vec3{0.04f, 0.04f, 0.04f}));
           }
         }
-    // Far outside in one coordinate only, at different positions along the border cells.
+    // Far outside in one coordinate only; and beyond the keys' range (about 2^19 h), where particles share
+    // the border cells, also with infinite and huge coordinates.
     append(p, uniform(rng, 100, Vec3{-50.0f, 0.0f, 0.0f}, Vec3{-49.9f, size.y, size.z}));
     append(p, uniform(rng, 100, Vec3{0.0f, 0.0f, 20.0f}, Vec3{size.x, size.y, 20.1f}));
+    append(p, uniform(rng, 50, Vec3{0.0f, 0.0f, 1e6f}, Vec3{0.05f, 0.05f, 1e6f}));
+    append(p, {Vec3{0.0f, 0.0f, 3e38f}, Vec3{0.0f, 0.0f, -3e38f}, Vec3{1e30f, -1e30f, 0.0f}});
     CHECK(check_grid(gc.constants, p) > 1000);
   }
 }
@@ -236,9 +246,6 @@ TEST_CASE("grid neighbour sets equal brute force: empty regions and no particles
     sph::CpuBackend backend(gc.constants);
     backend.upload(make_state({}));
     backend.build_grid();
-    int visits = 0;
-    for (const Vec3& q : {Vec3{0.5f, 0.4f, 0.3f}, Vec3{-10.0f, 0.0f, 100.0f}})
-      sph::for_each_candidate(backend.grid_view(), q, [&](int32_t) { ++visits; });
-    CHECK(visits == 0);
+    CHECK(backend.state().size() == 0);
   }
 }

@@ -86,11 +86,9 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
   const PairSide side_a{&fa, rhoa, inv_rhoa, p.pressure[a], p.near_pressure[a]};
   Vec3 acc{0.0f, 0.0f, 0.0f};
   Vec3 dv{0.0f, 0.0f, 0.0f};
-  for_each_candidate(grid, xa, [&](int32_t b) {
-    const Vec3 xab = xa - p.pos[b];
-    const float r2 = length2(xab);
+  for_each_neighbour(grid, p.pos, a, k.h2, [&](int32_t b, Vec3 xab, float r2) {
     // r2 = 0: the particle itself, or a coincident one, which has no direction to push along.
-    if (r2 >= k.h2 || r2 <= 0.0f) return;
+    if (r2 <= 0.0f) return;
     const FluidConstants& fb = c.fluids[p.fluid[b]];
     const float rhob = p.density[b];
     const Vec3 vab = va - p.vel_force[b];
@@ -107,7 +105,7 @@ SPH_HD inline void forces_of(const SimConstants& c, const GridView& grid, const 
   // Mirror walls: the ghosts of the neighbours, the particle's own included, add pressure, near pressure and
   // viscosity (mirror_walls.h). A second pass, so the loop above stays as lean as without walls.
   const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
-  for_each_ghost(c, grid, p, walls, xa, [&](int32_t b, int32_t image, Vec3 xg, float r2) {
+  for_each_ghost(c, grid, p, walls, a, [&](int32_t b, int32_t image, Vec3 xg, float r2) {
     if (r2 <= 0.0f) return;  // a ghost on the particle itself: no direction to push along
     const Vec3 vg = mirror_velocity(walls, image, p.vel_force[b]);
     const float rhob = p.density[b];

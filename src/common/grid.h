@@ -1,6 +1,14 @@
-// Uniform grid shared by every back end: cell of a position (clamped into the grid, so any position is
-// valid) and the neighbour loop. Particles are stored in cell order (x fastest), so the cells x-R .. x+R
-// of one row are one contiguous index range: (2R+1)^2 ranges instead of (2R+1)^3 cells.
+// The neighbour grid shared by every back end: a grid over the particles, not over the domain.
+//
+// Cells are h / 2 wide (reach 2: every neighbour within h lies in the 5 x 5 x 5 cells around a particle's
+// own; 42% fewer candidates than 27 cells of h). Cells are grouped in blocks of 8 x 4 x 4. A particle's
+// 64-bit cell key is the Morton (Z-order) code of its block followed by its cell inside the block, rows
+// of 8 cells along x contiguous. Particles are sorted by (cell key, id), so only occupied blocks exist:
+// memory and time scale with the particle count whatever the size of the domain, and the Morton order
+// keeps neighbouring blocks close in memory whatever the fluid's shape (issue 11, items 7 and 9).
+// Each occupied block holds a dense table of its 128 cells' first particles and the indices of its 26
+// neighbour blocks, so a search finds every row of up to 5 cells as one or two index ranges without any
+// lookup: grid_build.h builds the tables, the back ends only schedule the loops.
 #pragma once
 
 #include <cstdint>
@@ -8,11 +16,33 @@
 #include "particle_view.h"
 #include "sph_hd.h"
 
+#ifndef SPH_BLOCK_X_BITS
+#define SPH_BLOCK_X_BITS 4
+#endif
+
 namespace sph {
 
-SPH_HD inline int32_t clamp_cell(float coord, float origin, float inv_cell, int32_t n) {
-  int32_t c = int32_t(floorf((coord - origin) * inv_cell));
-  return c < 0 ? 0 : (c >= n ? n - 1 : c);
+constexpr int32_t kGridReach = 2;                // cells on each side a search visits (cells of h / 2)
+constexpr int kBlockXBits = SPH_BLOCK_X_BITS, kBlockYBits = 2, kBlockZBits = 2;
+constexpr int32_t kBlockX = 1 << kBlockXBits, kBlockY = 1 << kBlockYBits, kBlockZ = 1 << kBlockZBits;
+constexpr int kLocalBits = kBlockXBits + kBlockYBits + kBlockZBits;
+constexpr int32_t kCellsPerBlock = 1 << kLocalBits;  // 128: 7 bits of the key
+constexpr int32_t kBlockTable = kCellsPerBlock + 1;  // per block: first particle of each cell, then the end
+constexpr int32_t kBlockNeighbours = 27;            // per block: itself and its 26 neighbours (-1: empty)
+constexpr int32_t kBlockBits = 18;                   // per axis: 2^18 blocks, about +-2^17 * 4h from the origin
+constexpr uint64_t kLocalMask = uint64_t(kCellsPerBlock) - 1;
+
+// Cell coordinate along one axis, counted from the cell that holds the grid origin plus half the range,
+// so that it is never negative. Clamped in floating point before the conversion (which is undefined for
+// far-away or non-finite values and differs between x86 and GPUs): positions beyond about 2^17 blocks
+// share the border cells, which keeps the search exact (they are candidates of one another).
+SPH_HD inline int32_t cell_coord(float coord, float origin, float inv_cell, int32_t cells_per_block) {
+  const float half = float((1 << (kBlockBits - 1)) * cells_per_block);
+  const float last = float((1 << kBlockBits) * cells_per_block - 1);
+  float c = floorf((coord - origin) * inv_cell) + half;
+  c = c > 0.0f ? c : 0.0f;  // NaN goes to 0 as well
+  c = c < last ? c : last;
+  return int32_t(c);
 }
 
 struct CellCoord {
@@ -21,45 +51,131 @@ struct CellCoord {
 
 SPH_HD inline CellCoord cell_of(const GridGeometry& g, Vec3 p) {
   const float inv = 1.0f / g.cell_size;
-  return {clamp_cell(p.x, g.origin.x, inv, g.nx), clamp_cell(p.y, g.origin.y, inv, g.ny),
-          clamp_cell(p.z, g.origin.z, inv, g.nz)};
+  return {cell_coord(p.x, g.origin.x, inv, kBlockX), cell_coord(p.y, g.origin.y, inv, kBlockY),
+          cell_coord(p.z, g.origin.z, inv, kBlockZ)};
 }
 
-SPH_HD inline int32_t cell_index(const GridGeometry& g, int32_t x, int32_t y, int32_t z) {
-  return (z * g.ny + y) * g.nx + x;
+// Morton code of three 18-bit coordinates: their bits interleaved (x lowest), 54 bits.
+SPH_HD inline uint64_t spread_bits3(uint32_t v) {
+  uint64_t x = v & 0x3ffffu;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
 }
 
+SPH_HD inline uint32_t compact_bits3(uint64_t x) {
+  x &= 0x1249249249249249ull;
+  x = (x ^ (x >> 2)) & 0x10c30c30c30c30c3ull;
+  x = (x ^ (x >> 4)) & 0x100f00f00f00f00full;
+  x = (x ^ (x >> 8)) & 0x1f0000ff0000ffull;
+  x = (x ^ (x >> 16)) & 0x1f00000000ffffull;
+  x = (x ^ (x >> 32)) & 0x3ffffull;
+  return uint32_t(x);
+}
+
+SPH_HD inline uint64_t block_key(int32_t bx, int32_t by, int32_t bz) {
+  return spread_bits3(uint32_t(bx)) | spread_bits3(uint32_t(by)) << 1 | spread_bits3(uint32_t(bz)) << 2;
+}
+
+// Cell key: block's Morton code, then the cell inside the block (x fastest: rows of 8 cells contiguous).
+SPH_HD inline uint64_t cell_key(const GridGeometry& g, Vec3 p) {
+  const CellCoord c = cell_of(g, p);
+  const uint64_t local = uint64_t(c.x % kBlockX) | uint64_t(c.y % kBlockY) << kBlockXBits |
+                         uint64_t(c.z % kBlockZ) << (kBlockXBits + kBlockYBits);
+  return block_key(c.x / kBlockX, c.y / kBlockY, c.z / kBlockZ) << kLocalBits | local;
+}
+
+// A label of the cell that holds p, for colouring particles by cell (render/colour_map.h).
 SPH_HD inline int32_t cell_index(const GridGeometry& g, Vec3 p) {
-  const CellCoord c = cell_of(g, p);
-  return cell_index(g, c.x, c.y, c.z);
+  const uint64_t k = cell_key(g, p);
+  return int32_t(uint32_t(k) ^ uint32_t(k >> 32));
 }
 
-SPH_HD inline int64_t cell_count(const GridGeometry& g) { return int64_t(g.nx) * g.ny * g.nz; }
-
-// Calls f(b) for every particle b in the cells within `reach` of position p's cell (its own included).
-// The caller tests the distance: reach cells span at least h, so every particle within h is visited.
+// Calls f(begin, end) for every index range of particles in the 5 x 5 x 5 cells around particle a's cell
+// (its own included): one or two ranges per row of 5 cells, in one fixed order (rows by z, then y, then x
+// ascending), the same on every back end, so that every sum over neighbours has the same bits. Written
+// with few live values: the GPU kernels that call it must stay within their register budgets without
+// spilling (tests/ptxas_resources.sh).
 template <class F>
-SPH_HD inline void for_each_candidate(const GridView& grid, Vec3 p, F&& f) {
-  const GridGeometry& g = grid.geom;
-  const CellCoord c = cell_of(g, p);
-  const int32_t r = g.reach;
-  const int32_t x0 = c.x > r ? c.x - r : 0;
-  const int32_t x1 = c.x < g.nx - 1 - r ? c.x + r : g.nx - 1;
-  const int32_t z0 = c.z > r ? c.z - r : 0, z1 = c.z < g.nz - 1 - r ? c.z + r : g.nz - 1;
-  const int32_t y0 = c.y > r ? c.y - r : 0, y1 = c.y < g.ny - 1 - r ? c.y + r : g.ny - 1;
-  for (int32_t z = z0; z <= z1; ++z) {
-    for (int32_t y = y0; y <= y1; ++y) {
-      const int32_t begin = grid.cell_start[cell_index(g, x0, y, z)];
-      const int32_t end = grid.cell_start[cell_index(g, x1, y, z) + 1];
-      for (int32_t b = begin; b < end; ++b) f(b);
+SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&& f) {
+  const int32_t local = int32_t(grid.key[a] & kLocalMask);
+  const int32_t* neighbours = grid.block_neighbours + int64_t(grid.particle_block[a]) * kBlockNeighbours;
+#if defined(__CUDA_ARCH__)
+#pragma unroll 1
+#endif
+  for (int32_t r = 0; r < (2 * kGridReach + 1) * (2 * kGridReach + 1); ++r) {
+    const int32_t z = (local >> (kBlockXBits + kBlockYBits)) + r / (2 * kGridReach + 1) - kGridReach;
+    const int32_t y = ((local >> kBlockXBits) & (kBlockY - 1)) + r % (2 * kGridReach + 1) - kGridReach;
+    const int32_t bz = z < 0 ? -1 : (z >= kBlockZ ? 1 : 0);
+    const int32_t by = y < 0 ? -1 : (y >= kBlockY ? 1 : 0);
+    const int32_t row = (z - kBlockZ * bz) * (kBlockX * kBlockY) + (y - kBlockY * by) * kBlockX;
+    const int32_t x0 = (local & (kBlockX - 1)) - kGridReach, x1 = x0 + 2 * kGridReach;
+#if defined(__CUDA_ARCH__)
+#pragma unroll 1
+#endif
+    for (int32_t bx = x0 < 0 ? -1 : 0; bx <= (x1 >= kBlockX ? 1 : 0); ++bx) {
+      const int32_t block = neighbours[(bz + 1) * 9 + (by + 1) * 3 + (bx + 1)];
+      if (block < 0) continue;
+      const int32_t from = x0 - kBlockX * bx > 0 ? x0 - kBlockX * bx : 0;
+      const int32_t to = x1 - kBlockX * bx < kBlockX - 1 ? x1 - kBlockX * bx : kBlockX - 1;
+      const int32_t* start = grid.cell_start + int64_t(block) * kBlockTable + row;
+      f(start[from], start[to + 1]);
     }
   }
 }
 
+// Calls f(b) for every candidate b around particle a (for_each_candidate_range's order); the caller
+// tests the distance.
+template <class F>
+SPH_HD inline void for_each_candidate(const GridView& grid, int32_t a, F&& f) {
+  for_each_candidate_range(grid, a, [&](int32_t begin, int32_t end) {
+    for (int32_t b = begin; b < end; ++b) f(b);
+  });
+}
+
+// Calls f(b, xab, r2) for every particle b with r2 = |x_a - x_b|^2 < h2 (a itself included), xab = x_a - x_b,
+// in for_each_candidate's order on every back end. On the CPU builds the candidates are first filtered
+// without a branch into a short list: once the fluid is disordered, "is b a neighbour?" is a coin toss
+// for the branch predictor, and mispredictions doubled the cost of a step over a dam break (issue 11,
+// item 9). A GPU has no such predictor and tests each candidate directly.
+template <class F>
+SPH_HD inline void for_each_neighbour(const GridView& grid, const Vec3* pos, int32_t a, float h2, F&& f) {
+  const Vec3 xa = pos[a];
+#if defined(__CUDA_ARCH__)
+  for_each_candidate(grid, a, [&](int32_t b) {
+    const Vec3 xab = xa - pos[b];
+    const float r2 = length2(xab);
+    if (r2 < h2) f(b, xab, r2);
+  });
+#else
+  constexpr int32_t kChunk = 64;
+  int32_t list[kChunk];
+  int32_t m = 0;
+  auto flush = [&] {
+    for (int32_t t = 0; t < m; ++t) {
+      const Vec3 xab = xa - pos[list[t]];
+      f(list[t], xab, length2(xab));
+    }
+    m = 0;
+  };
+  for_each_candidate_range(grid, a, [&](int32_t begin, int32_t end) {
+    for (int32_t b = begin; b < end; ++b) {
+      const Vec3 xab = xa - pos[b];
+      list[m] = b;
+      m += length2(xab) < h2 ? 1 : 0;
+      if (m == kChunk) flush();
+    }
+  });
+  flush();
+#endif
+}
+
 // Puts the particles of one cell, order[begin, end), in ascending id order (insertion sort: cells hold a
-// few dozen particles and arrive nearly sorted). Both back ends sort every cell this way after binning,
-// so the particle order, and with it every floating-point sum, depends only on the particle set, not on
-// the previous order or on the timing of atomic operations.
+// few particles and arrive nearly sorted). The particle order, and with it every floating-point sum,
+// then depends only on the particle set, not on the previous order or on a parallel sort's timing.
 SPH_HD inline void sort_cell_by_id(int32_t* order, int32_t begin, int32_t end, const int32_t* id) {
   for (int32_t i = begin + 1; i < end; ++i) {
     const int32_t moving = order[i];

@@ -10,6 +10,7 @@
 #include "setup_checks.h"
 
 #include "frame_reader.h"
+#include "grid.h"
 #include "obstacle_contacts.h"
 #include "viscous_limit.h"
 
@@ -49,11 +50,10 @@ std::string metres(double x) {
   return os.str();
 }
 
-// Uniform grid over the container (or domain, or the fluid with room to spread). Cell counts are
-// computed in double and the grid is refused, not wrapped round or collapsed, when the domain is too
-// large or too thin for cells of about h / 2.
-GridGeometry make_grid(const Scene& scene, const ParticleState& ps, const std::vector<JetEmitter>& jets, double h,
-                       double expected) {
+// The neighbour grid's origin and cells (grid.h), and the domain the fluid is expected in: the container
+// (or "domain", or the fluid with room to spread) with a band of 2 h. Refused when the domain is wider
+// than the grid's keys reach.
+GridGeometry make_grid(const Scene& scene, const ParticleState& ps, const std::vector<JetEmitter>& jets, double h) {
   Vec3d lo{1e30, 1e30, 1e30}, hi{-1e30, -1e30, -1e30};
   auto grow = [&](double x, double y, double z) {
     const double p[3] = {x, y, z};
@@ -88,29 +88,25 @@ GridGeometry make_grid(const Scene& scene, const ParticleState& ps, const std::v
     lo[i] -= 2.0 * h;
     hi[i] += 2.0 * h;
   }
-  // Cells at least h / reach wide; coarser when the domain would need too many cells, up to h (each
-  // search then tests about 8 times the candidates it was designed for); beyond that the scene is refused.
-  const int reach = 2;
-  // At most 2^30 cells: cell indices and cell_start are int32.
-  const double max_cells = std::min(std::max(1.0 * (1 << 22), 16.0 * expected), 1.0 * (1 << 30));
-  double cell = h / reach;
+  // Cells of h / 2 whatever the domain's size: the grid holds only occupied blocks (grid.h). The keys
+  // reach 2^17 blocks from the origin on each side (at least 2^18 h along y and z): beyond that particles
+  // would share border cells and the search would slow down, so such a domain is refused.
+  const double cell = h / kGridReach;
   auto cells = [&](int axis) { return std::max(1.0, std::ceil((hi[axis] - lo[axis]) / cell)); };
-  auto total = [&] { return cells(0) * cells(1) * cells(2); };
-  for (int grow_steps = 0; total() > max_cells && grow_steps < 100; ++grow_steps) cell *= 1.1;
-  if (total() > max_cells || cell > h) {
+  const double key_range = double(1 << (kBlockBits - 1)) * kBlockY;  // cells on the positive side, y and z
+  if (std::max({cells(0), cells(1), cells(2)}) > key_range) {
     std::ostringstream os;
-    cell = h / reach;
     os << scene.source << ": the simulation domain " << metres(hi[0] - lo[0]) << " x " << metres(hi[1] - lo[1]) << " x "
-       << metres(hi[2] - lo[2]) << " m (with a band of 2 h) needs " << count_text(std::round(total()))
-       << " grid cells of h / 2 = " << metres(cell) << " m, more than the " << count_text(max_cells)
-       << " this scene may use (16 per particle, at least 4194304, at most 2^30); make the domain (\"domain\" or the box "
-          "container) fit the fluid more closely, or coarsen the resolution";
+       << metres(hi[2] - lo[2]) << " m (with a band of 2 h) is wider than the neighbour grid reaches: "
+       << count_text(key_range) << " grid cells of h / 2 = " << metres(cell)
+       << " m along each axis; make the domain (\"domain\" or the box container) fit the fluid more closely, or coarsen "
+          "the resolution";
     throw SceneError(os.str());
   }
   GridGeometry g{};
   g.origin = f3(lo);
   g.cell_size = float(cell);
-  g.reach = reach;
+  g.reach = kGridReach;
   g.nx = int32_t(cells(0));
   g.ny = int32_t(cells(1));
   g.nz = int32_t(cells(2));
@@ -317,7 +313,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     throw SceneError(scene.source + ": the emitters create no particle at spacing " + metres(s.spacing) +
                      " m once the particles inside solids are removed");
 
-  c.grid = make_grid(scene, s.particles, s.jets, s.h, s.expected_particles);
+  c.grid = make_grid(scene, s.particles, s.jets, s.h);
   s.blowup_speed = fallback_blowup_speed(scene, s.max_speed_of_sound, s.jets);
 }
 

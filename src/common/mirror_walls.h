@@ -99,17 +99,17 @@ SPH_HD inline Vec3 mirror_velocity(const NearWalls& w, int32_t image, Vec3 v) {
   return v;
 }
 
-// Calls f(b, image, x_ghost, r2) for every ghost within h of the particle at xa: each neighbour b's
+// Calls f(b, image, x_ghost, r2) for every ghost within h of particle a (at xa): each neighbour b's
 // images 1.. across `walls`, r2 = |xa - x_ghost|^2 < h^2; the ghost's velocity is
 // mirror_velocity(walls, image, v_b). Only neighbours within h can have one.
 template <class F>
 SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, const ParticleView& p,
-                                  const NearWalls& walls, Vec3 xa, F&& f) {
+                                  const NearWalls& walls, int32_t a, F&& f) {
   if (walls.count == 0) return;
+  const Vec3 xa = p.pos[a];
   const float h2 = c.kernel.h2;
-  for_each_candidate(grid, xa, [&](int32_t b) {
+  for_each_neighbour(grid, p.pos, a, h2, [&](int32_t b, Vec3, float) {
     const Vec3 xb = p.pos[b];
-    if (length2(xa - xb) >= h2) return;
     for (int32_t image = 1; image < image_count(walls); ++image) {
       const Vec3 xg = mirror_position(walls, image, xb);
       const float r2 = length2(xa - xg);

@@ -71,15 +71,15 @@ struct Shape {
   Vec3 reach_hi;         // on a wall or another obstacle (obstacle_contacts.h); 0 = the box itself
 };
 
-// Uniform-grid geometry. The grid covers the domain; positions outside it are clamped into the border
-// cells, which keeps neighbour search exact for any position. Cells are at least h / reach wide and the
-// search visits `reach` cells on each side: reach 2 (cells of h/2, a 5x5x5 block) tests 42% fewer
-// candidates than reach 1 (27 cells of h).
+// Neighbour-grid geometry (grid.h). The grid is over the particles: cells of h / 2 (reach 2) counted from
+// `origin`, with no memory for empty space. The domain, origin + cell_size * (nx, ny, nz), only says where
+// the fluid is expected: particles outside it are still found as neighbours, and are counted in the
+// metrics and the run's summary (particles_outside_domain).
 struct GridGeometry {
   Vec3 origin;
-  float cell_size;     // >= h / reach
-  int32_t reach;
-  int32_t nx, ny, nz;
+  float cell_size;     // h / reach [m]
+  int32_t reach;       // kGridReach
+  int32_t nx, ny, nz;  // the domain's extent in cells
 };
 
 // A user force field (thesis eq. 2.25, f_other): an acceleration towards (strength > 0) or away from

@@ -27,9 +27,13 @@ struct ParticleView {
   Vec3* pos_start;      // position at the start of the step: boundaries test the segment moved (boundaries.h)
 };
 
+// The neighbour grid of the current particle order (grid.h, grid_build.h); arrays owned by the back end.
 struct GridView {
   GridGeometry geom;
-  const int32_t* cell_start;  // ncells + 1 entries; cell c holds particles [cell_start[c], cell_start[c+1])
+  const uint64_t* key;              // n: cell key of each particle, ascending
+  const int32_t* particle_block;    // n: index of each particle's block
+  const int32_t* block_neighbours;  // 27 per block: the blocks at offsets (-1..1)^3, z slowest; -1 = none
+  const int32_t* cell_start;        // 129 per block: first particle of each of its 128 cells, then its end
 };
 
 }  // namespace sph

@@ -1,5 +1,6 @@
 #include "cpu_backend.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -8,7 +9,7 @@
 #include "../common/boundaries.h"
 #include "../common/density.h"
 #include "../common/forces.h"
-#include "../common/grid.h"
+#include "../common/grid_build.h"
 #include "../common/integrate.h"
 #include "../common/pressure.h"
 
@@ -62,28 +63,48 @@ void CpuBackend::predict(float dt) {
   for (int32_t i = 0; i < p.n; ++i) predict_particle(c_, p, i, dt);
 }
 
-// Counting sort by cell: count, exclusive prefix sum, fill, sort each cell by particle id, then move every
-// array into that order so that neighbour loops read memory in order.
+// The grid of grid_build.h: keys, sort by (key, id), blocks, each block's cell table and neighbours; then
+// every array moves into the sorted order so that neighbour loops read memory in order.
 void CpuBackend::build_grid() {
-  const std::size_t n = s_.size();
-  const std::size_t ncells = std::size_t(cell_count(c_.grid));
-  cell_start_.assign(ncells + 1, 0);
-  particle_cell_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const int32_t cell = cell_index(c_.grid, s_.pos[i]);
-    particle_cell_[i] = cell;
-    ++cell_start_[std::size_t(cell) + 1];
+  const int32_t n = int32_t(s_.size());
+  unsorted_key_.resize(std::size_t(n));
+  order_.resize(std::size_t(n));
+  for (int32_t i = 0; i < n; ++i) {
+    unsorted_key_[std::size_t(i)] = cell_key(c_.grid, s_.pos[std::size_t(i)]);
+    order_[std::size_t(i)] = i;
   }
-  for (std::size_t cell = 0; cell < ncells; ++cell) cell_start_[cell + 1] += cell_start_[cell];
-  next_slot_.assign(cell_start_.begin(), cell_start_.end() - 1);
-  order_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) order_[std::size_t(next_slot_[std::size_t(particle_cell_[i])]++)] = int32_t(i);
-  for (std::size_t cell = 0; cell < ncells; ++cell)
-    if (cell_start_[cell + 1] - cell_start_[cell] > 1)
-      sort_cell_by_id(order_.data(), cell_start_[cell], cell_start_[cell + 1], s_.id.data());
-  sorted_.resize(n);
-  for (std::size_t j = 0; j < n; ++j) sorted_.copy_particle(j, s_, std::size_t(order_[j]));
+  std::sort(order_.begin(), order_.end(), [&](int32_t a, int32_t b) {
+    const uint64_t ka = unsorted_key_[std::size_t(a)], kb = unsorted_key_[std::size_t(b)];
+    return ka < kb || (ka == kb && s_.id[std::size_t(a)] < s_.id[std::size_t(b)]);
+  });
+  key_.resize(std::size_t(n));
+  sorted_.resize(std::size_t(n));
+  for (int32_t j = 0; j < n; ++j) {
+    const std::size_t from = std::size_t(order_[std::size_t(j)]);
+    key_[std::size_t(j)] = unsorted_key_[from];
+    sorted_.copy_particle(std::size_t(j), s_, from);
+  }
   std::swap(s_, sorted_);
+
+  particle_block_.resize(std::size_t(n));
+  block_begin_.clear();
+  block_code_.clear();
+  for (int32_t j = 0; j < n; ++j) {
+    if (is_block_start(key_.data(), j)) {
+      block_begin_.push_back(j);
+      block_code_.push_back(block_of_key(key_[std::size_t(j)]));
+    }
+    particle_block_[std::size_t(j)] = int32_t(block_begin_.size()) - 1;
+  }
+  const int32_t blocks = int32_t(block_code_.size());
+  block_begin_.push_back(n);
+  cell_start_.resize(std::size_t(blocks) * kBlockTable);
+  block_neighbours_.resize(std::size_t(blocks) * kBlockNeighbours);
+  for (int32_t b = 0; b < blocks; ++b) {
+    fill_block_table(key_.data(), block_begin_[std::size_t(b)], block_begin_[std::size_t(b) + 1],
+                     cell_start_.data() + std::size_t(b) * kBlockTable);
+    find_block_neighbours(block_code_.data(), blocks, b, block_neighbours_.data() + std::size_t(b) * kBlockNeighbours);
+  }
 }
 
 void CpuBackend::density(float dt) {

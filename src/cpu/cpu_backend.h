@@ -35,7 +35,9 @@ class CpuBackend final : public Backend {
   void boundaries(float dt);
   void recycle();
 
-  GridView grid_view() const { return GridView{c_.grid, cell_start_.data()}; }
+  GridView grid_view() const {
+    return GridView{c_.grid, key_.data(), particle_block_.data(), block_neighbours_.data(), cell_start_.data()};
+  }
   const SimConstants& constants() const { return c_; }
   ParticleState& state() { return s_; }
 
@@ -43,10 +45,10 @@ class CpuBackend final : public Backend {
   SimConstants c_;
   ParticleState s_;
   ParticleState sorted_;              // reorder target, swapped with s_
-  std::vector<int32_t> cell_start_;   // ncells + 1
-  std::vector<int32_t> particle_cell_;
-  std::vector<int32_t> next_slot_;
-  std::vector<int32_t> order_;        // order_[j]: the particle that goes to slot j
+  // The grid (grid_build.h): sorted keys, block of each particle, blocks' first particles and codes, cell
+  // tables and neighbours; order_[j]: the particle that goes to slot j.
+  std::vector<uint64_t> unsorted_key_, key_, block_code_;
+  std::vector<int32_t> order_, particle_block_, block_begin_, block_neighbours_, cell_start_;
   PhaseTimes times_;
 };
 

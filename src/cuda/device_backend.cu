@@ -1,5 +1,5 @@
-// The device back end: the phases of a step as data-parallel loops over particle or cell indices
-// (device_launch.h), the physics from src/common/, the grid by atomic binning. One source, two builds (see
+// The device back end: the phases of a step as data-parallel loops over particle or block indices
+// (device_launch.h), the physics from src/common/, the grid sorted by cell key (device_grid.h). One source, two builds (see
 // device_backend.h): SPH_DEVICE_NS and the factory name are set by the including build.
 //
 // The simulation constants are read from one copy (device_constants.h): the GPU's constant memory under
@@ -10,11 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-#include <cuda/atomic>
 #include <thrust/count.h>
 #include <thrust/copy.h>
 #include <thrust/execution_policy.h>
-#include <thrust/fill.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/scan.h>
 #include <thrust/transform_reduce.h>
@@ -29,6 +27,7 @@
 #include "device_arrays.h"
 #include "device_constants.h"
 #include "device_faults.h"
+#include "device_grid.h"
 #include "device_launch.h"
 #include "device_backend.h"
 
@@ -42,41 +41,6 @@ struct PredictFn {
   ParticleView p;
   float dt;
   SPH_KERNEL_FN void operator()(int32_t i) const { predict_particle(*c, p, i, dt); }
-};
-
-// Grid binning: each particle's cell, and its slot in the cell by an atomic increment of the cell count.
-struct BinFn {
-  GridGeometry g;
-  const Vec3* pos;
-  int32_t* cell_count;
-  int32_t* particle_cell;
-  int32_t* particle_slot;
-  SPH_HD void operator()(int32_t i) const {
-    const int32_t cell = cell_index(g, pos[i]);
-    particle_cell[i] = cell;
-    cuda::atomic_ref<int32_t, cuda::thread_scope_device> count(cell_count[cell]);
-    particle_slot[i] = count.fetch_add(1, cuda::memory_order_relaxed);
-  }
-};
-
-// Scatter: particle i goes to its cell's first index plus its slot.
-struct ScatterFn {
-  const int32_t* cell_start;
-  const int32_t* particle_cell;
-  const int32_t* particle_slot;
-  int32_t* order;
-  SPH_HD void operator()(int32_t i) const { order[cell_start[particle_cell[i]] + particle_slot[i]] = i; }
-};
-
-// The slot order inside a cell depends on atomic timing: sort each cell by particle id (deterministic).
-struct SortCellFn {
-  const int32_t* cell_start;
-  const int32_t* id;
-  int32_t* order;
-  SPH_HD void operator()(int32_t cell) const {
-    const int32_t begin = cell_start[cell], end = cell_start[cell + 1];
-    if (end - begin > 1) sort_cell_by_id(order, begin, end, id);
-  }
 };
 
 // Occupancy targets of issue 11 (kBlocksPerSm, see launch): density 64 registers (4 blocks of 256 per
@@ -309,19 +273,17 @@ class DeviceBackend final : public Backend {
 
  private:
   int32_t n() const { return int32_t(d_.size()); }
-  int32_t ncells() const { return int32_t(cell_count(c_.grid)); }
-  GridView grid_view() const { return GridView{c_.grid, thrust::raw_pointer_cast(cell_start_.data())}; }
+  GridView grid_view() const { return grid_.view(c_.grid); }
 
   // The constants as the kernels read them, uploaded first if another back end bound them last.
   ConstantsRef constants() { return constants_.bind(c_); }
 
   // Refuses, with a message naming the limit, a particle count the device memory cannot hold.
   void check_memory_for(std::size_t particles) const {
-    // particle_cell_, particle_slot_, order_, keep_ and keep_flag_
-    constexpr std::size_t kIndexBytes = 4 * sizeof(int32_t) + sizeof(uint8_t);
+    // the grid, keep_ and keep_flag_
+    constexpr std::size_t kIndexBytes = DeviceGrid::kBytesPerParticle + sizeof(int32_t) + sizeof(uint8_t);
     const std::size_t per_particle = DeviceArrays::kBytesPerParticle + kIndexBytes;
-    check_device_memory(particles, per_particle, 2 * sizeof(int32_t) * (std::size_t(ncells()) + 1),
-                        d_.size() * per_particle);
+    check_device_memory(particles, per_particle, 0, d_.size() * per_particle);
   }
 
   template <class F>
@@ -331,24 +293,8 @@ class DeviceBackend final : public Backend {
     times_.seconds[std::size_t(p)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
-  // Count per cell with atomics, exclusive scan, scatter, sort each cell by id, reorder every array.
-  void build_grid() {
-    const int32_t count = n();
-    cell_count_.assign(std::size_t(ncells()) + 1, 0);
-    particle_cell_.resize(std::size_t(count));
-    particle_slot_.resize(std::size_t(count));
-    order_.resize(std::size_t(count));
-    launch(count, BinFn{c_.grid, thrust::raw_pointer_cast(d_.pos.data()), thrust::raw_pointer_cast(cell_count_.data()),
-                        thrust::raw_pointer_cast(particle_cell_.data()), thrust::raw_pointer_cast(particle_slot_.data())});
-    cell_start_.resize(cell_count_.size());
-    thrust::exclusive_scan(with_temporaries(temporary_), cell_count_.begin(), cell_count_.end(), cell_start_.begin());
-    launch(count, ScatterFn{thrust::raw_pointer_cast(cell_start_.data()), thrust::raw_pointer_cast(particle_cell_.data()),
-                            thrust::raw_pointer_cast(particle_slot_.data()), thrust::raw_pointer_cast(order_.data())});
-    launch(ncells(), SortCellFn{thrust::raw_pointer_cast(cell_start_.data()), thrust::raw_pointer_cast(d_.id.data()),
-                                thrust::raw_pointer_cast(order_.data())});
-    sorted_.gather_from(d_, order_);
-    std::swap(d_, sorted_);
-  }
+  // Sort by (cell key, id) and build the block tables (device_grid.h), moving every array into that order.
+  void build_grid() { grid_.build(c_.grid, d_, sorted_, with_temporaries(temporary_)); }
 
   void density(float dt) { launch(n(), DensityFn{constants(), grid_view(), d_.view(), dt}); }
   void pressure() { launch(n(), PressureFn{constants(), d_.view()}); }
@@ -375,7 +321,8 @@ class DeviceBackend final : public Backend {
   std::string name_;
   DeviceArrays d_, sorted_;
   QuietTemporaryAllocator temporary_;
-  DeviceVector<int32_t> cell_count_, cell_start_, particle_cell_, particle_slot_, order_, keep_;
+  DeviceGrid grid_;
+  DeviceVector<int32_t> keep_;
   DeviceVector<uint8_t> keep_flag_;
   ParticleState host_;
   PhaseTimes times_;
