@@ -96,34 +96,35 @@ SPH_HD inline int32_t cell_index(const GridGeometry& g, Vec3 p) {
 
 // Calls f(begin, end) for every index range of particles in the 5 x 5 x 5 cells around particle a's cell
 // (its own included): one or two ranges per row of 5 cells, in one fixed order (rows by z, then y, then x
-// ascending), the same on every back end, so that every sum over neighbours has the same bits. Written
-// with few live values: the GPU kernels that call it must stay within their register budgets without
+// ascending), the same on every back end, so that every sum over neighbours has the same bits. Written with
+// few live values: the GPU kernels that call it must stay within their register budgets without
 // spilling (tests/ptxas_resources.sh).
 template <class F>
 SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&& f) {
+  constexpr int32_t kSide = 2 * kGridReach + 1;
   const int32_t local = int32_t(grid.key[a] & kLocalMask);
-  const int32_t* neighbours = grid.block_neighbours + int64_t(grid.particle_block[a]) * kBlockNeighbours;
+  const int32_t block_a = grid.particle_block[a];
+  // One counter over (row, part): part 0 and 1 are the row's cells in the left and right block of the two
+  // it may touch along x; a part with no cells is skipped.
 #if defined(__CUDA_ARCH__)
 #pragma unroll 1
 #endif
-  for (int32_t r = 0; r < (2 * kGridReach + 1) * (2 * kGridReach + 1); ++r) {
-    const int32_t z = (local >> (kBlockXBits + kBlockYBits)) + r / (2 * kGridReach + 1) - kGridReach;
-    const int32_t y = ((local >> kBlockXBits) & (kBlockY - 1)) + r % (2 * kGridReach + 1) - kGridReach;
+  for (int32_t s = 0; s < 2 * kSide * kSide; ++s) {
+    const int32_t r = s >> 1;
+    const int32_t x0 = (local & (kBlockX - 1)) - kGridReach, x1 = x0 + 2 * kGridReach;
+    const int32_t bx = (x0 < 0 ? -1 : 0) + (s & 1);
+    if (bx > (x1 >= kBlockX ? 1 : 0)) continue;
+    const int32_t z = (local >> (kBlockXBits + kBlockYBits)) + r / kSide - kGridReach;
+    const int32_t y = ((local >> kBlockXBits) & (kBlockY - 1)) + r % kSide - kGridReach;
     const int32_t bz = z < 0 ? -1 : (z >= kBlockZ ? 1 : 0);
     const int32_t by = y < 0 ? -1 : (y >= kBlockY ? 1 : 0);
-    const int32_t row = (z - kBlockZ * bz) * (kBlockX * kBlockY) + (y - kBlockY * by) * kBlockX;
-    const int32_t x0 = (local & (kBlockX - 1)) - kGridReach, x1 = x0 + 2 * kGridReach;
-#if defined(__CUDA_ARCH__)
-#pragma unroll 1
-#endif
-    for (int32_t bx = x0 < 0 ? -1 : 0; bx <= (x1 >= kBlockX ? 1 : 0); ++bx) {
-      const int32_t block = neighbours[(bz + 1) * 9 + (by + 1) * 3 + (bx + 1)];
-      if (block < 0) continue;
-      const int32_t from = x0 - kBlockX * bx > 0 ? x0 - kBlockX * bx : 0;
-      const int32_t to = x1 - kBlockX * bx < kBlockX - 1 ? x1 - kBlockX * bx : kBlockX - 1;
-      const int32_t* start = grid.cell_start + int64_t(block) * kBlockTable + row;
-      f(start[from], start[to + 1]);
-    }
+    const int32_t block = grid.block_neighbours[int64_t(block_a) * kBlockNeighbours + (bz + 1) * 9 + (by + 1) * 3 + (bx + 1)];
+    if (block < 0) continue;
+    const int32_t from = x0 - kBlockX * bx > 0 ? x0 - kBlockX * bx : 0;
+    const int32_t to = x1 - kBlockX * bx < kBlockX - 1 ? x1 - kBlockX * bx : kBlockX - 1;
+    const int32_t* start = grid.cell_start + int64_t(block) * kBlockTable + (z - kBlockZ * bz) * (kBlockX * kBlockY) +
+                           (y - kBlockY * by) * kBlockX;
+    f(start[from], start[to + 1]);
   }
 }
 
@@ -136,41 +137,58 @@ SPH_HD inline void for_each_candidate(const GridView& grid, int32_t a, F&& f) {
   });
 }
 
+// Neighbours listed per particle on the CPU builds (grid.neighbour_list): a list is complete when the
+// particle has fewer neighbours than this (typical counts are 25 to 40); otherwise the loops search.
+constexpr int32_t kNeighbourListCapacity = 64;
+
+// The particles b within h of particle a (|x_a - x_b|^2 < h2, a itself included), in for_each_candidate's
+// order: returns how many there are, and lists them all in list[0, capacity) when there are fewer than
+// `capacity` (otherwise the list is incomplete and must not be used). Two ways to the same list:
+// kBranchFree filters the candidates without a branch, which pays once the fluid is disordered and "is b
+// a neighbour?" is a coin toss for the CPU's branch predictor (mispredictions doubled the cost of a step
+// over a dam break: issue 11, item 9); a branch is faster while the particles still sit on a lattice,
+// where the predictor learns the pattern. The back end times both (neighbour_list_choice.h).
+template <bool kBranchFree>
+SPH_HD inline int32_t list_neighbours(const GridView& grid, const Vec3* pos, int32_t a, float h2, int32_t* list,
+                                      int32_t capacity) {
+  const Vec3 xa = pos[a];
+  int32_t m = 0;
+  for_each_candidate_range(grid, a, [&](int32_t begin, int32_t end) {
+    for (int32_t b = begin; b < end; ++b) {
+      if (kBranchFree) {
+        list[m < capacity ? m : capacity - 1] = b;  // past the capacity the last slot is scratch
+        m += length2(xa - pos[b]) < h2 ? 1 : 0;
+      } else if (length2(xa - pos[b]) < h2) {
+        if (m < capacity) list[m] = b;
+        ++m;
+      }
+    }
+  });
+  return m;
+}
+
 // Calls f(b, xab, r2) for every particle b with r2 = |x_a - x_b|^2 < h2 (a itself included), xab = x_a - x_b,
-// in for_each_candidate's order on every back end. On the CPU builds the candidates are first filtered
-// without a branch into a short list: once the fluid is disordered, "is b a neighbour?" is a coin toss
-// for the branch predictor, and mispredictions doubled the cost of a step over a dam break (issue 11,
-// item 9). A GPU has no such predictor and tests each candidate directly.
+// in for_each_candidate's order on every back end, so every sum has the same bits. The CPU builds read
+// the list made with the grid (list_neighbours) when it holds them all: the search and its branch
+// mispredictions are then paid once per step instead of once per loop. A GPU tests each candidate.
 template <class F>
 SPH_HD inline void for_each_neighbour(const GridView& grid, const Vec3* pos, int32_t a, float h2, F&& f) {
   const Vec3 xa = pos[a];
-#if defined(__CUDA_ARCH__)
+#if !defined(__CUDA_ARCH__)
+  if (grid.neighbour_list != nullptr && grid.neighbour_count[a] < kNeighbourListCapacity) {
+    const int32_t* list = grid.neighbour_list + int64_t(a) * kNeighbourListCapacity;
+    for (int32_t t = 0, m = grid.neighbour_count[a]; t < m; ++t) {
+      const Vec3 xab = xa - pos[list[t]];
+      f(list[t], xab, length2(xab));
+    }
+    return;
+  }
+#endif
   for_each_candidate(grid, a, [&](int32_t b) {
     const Vec3 xab = xa - pos[b];
     const float r2 = length2(xab);
     if (r2 < h2) f(b, xab, r2);
   });
-#else
-  constexpr int32_t kChunk = 64;
-  int32_t list[kChunk];
-  int32_t m = 0;
-  auto flush = [&] {
-    for (int32_t t = 0; t < m; ++t) {
-      const Vec3 xab = xa - pos[list[t]];
-      f(list[t], xab, length2(xab));
-    }
-    m = 0;
-  };
-  for_each_candidate_range(grid, a, [&](int32_t begin, int32_t end) {
-    for (int32_t b = begin; b < end; ++b) {
-      const Vec3 xab = xa - pos[b];
-      list[m] = b;
-      m += length2(xab) < h2 ? 1 : 0;
-      if (m == kChunk) flush();
-    }
-  });
-  flush();
-#endif
 }
 
 // Puts the particles of one cell, order[begin, end), in ascending id order (insertion sort: cells hold a

@@ -64,25 +64,23 @@ void CpuBackend::predict(float dt) {
 }
 
 // The grid of grid_build.h: keys, sort by (key, id), blocks, each block's cell table and neighbours; then
-// every array moves into the sorted order so that neighbour loops read memory in order.
+// every array moves into the sorted order so that neighbour loops read memory in order; last each
+// particle's neighbour list (grid.h), which density, forces and mirror walls then read.
 void CpuBackend::build_grid() {
   const int32_t n = int32_t(s_.size());
-  unsorted_key_.resize(std::size_t(n));
-  order_.resize(std::size_t(n));
-  for (int32_t i = 0; i < n; ++i) {
-    unsorted_key_[std::size_t(i)] = cell_key(c_.grid, s_.pos[std::size_t(i)]);
-    order_[std::size_t(i)] = i;
-  }
-  std::sort(order_.begin(), order_.end(), [&](int32_t a, int32_t b) {
-    const uint64_t ka = unsorted_key_[std::size_t(a)], kb = unsorted_key_[std::size_t(b)];
-    return ka < kb || (ka == kb && s_.id[std::size_t(a)] < s_.id[std::size_t(b)]);
+  // (key, id, index) records, sorted in place: the previous step's order is nearly sorted already.
+  sort_records_.resize(std::size_t(n));
+  for (int32_t i = 0; i < n; ++i)
+    sort_records_[std::size_t(i)] = SortRecord{cell_key(c_.grid, s_.pos[std::size_t(i)]), s_.id[std::size_t(i)], i};
+  std::sort(sort_records_.begin(), sort_records_.end(), [](const SortRecord& a, const SortRecord& b) {
+    return a.key < b.key || (a.key == b.key && a.id < b.id);
   });
   key_.resize(std::size_t(n));
   sorted_.resize(std::size_t(n));
   for (int32_t j = 0; j < n; ++j) {
-    const std::size_t from = std::size_t(order_[std::size_t(j)]);
-    key_[std::size_t(j)] = unsorted_key_[from];
-    sorted_.copy_particle(std::size_t(j), s_, from);
+    const SortRecord& r = sort_records_[std::size_t(j)];
+    key_[std::size_t(j)] = r.key;
+    sorted_.copy_particle(std::size_t(j), s_, std::size_t(r.index));
   }
   std::swap(s_, sorted_);
 
@@ -105,6 +103,20 @@ void CpuBackend::build_grid() {
                      cell_start_.data() + std::size_t(b) * kBlockTable);
     find_block_neighbours(block_code_.data(), blocks, b, block_neighbours_.data() + std::size_t(b) * kBlockNeighbours);
   }
+  neighbour_list_.resize(std::size_t(n) * kNeighbourListCapacity);
+  neighbour_count_.resize(std::size_t(n));
+  GridView search = grid_view();
+  search.neighbour_list = nullptr;
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool branch_free = list_choice_.branch_free();
+  for (int32_t a = 0; a < n; ++a) {
+    int32_t* list = neighbour_list_.data() + std::size_t(a) * kNeighbourListCapacity;
+    neighbour_count_[std::size_t(a)] =
+        branch_free ? list_neighbours<true>(search, s_.pos.data(), a, c_.kernel.h2, list, kNeighbourListCapacity)
+                    : list_neighbours<false>(search, s_.pos.data(), a, c_.kernel.h2, list, kNeighbourListCapacity);
+  }
+  list_choice_.record(branch_free, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                      std::size_t(n));
 }
 
 void CpuBackend::density(float dt) {

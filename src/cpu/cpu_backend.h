@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "../common/backend.h"
+#include "../common/neighbour_list_choice.h"
 #include "../common/particle_state.h"
 
 namespace sph {
@@ -36,7 +37,8 @@ class CpuBackend final : public Backend {
   void recycle();
 
   GridView grid_view() const {
-    return GridView{c_.grid, key_.data(), particle_block_.data(), block_neighbours_.data(), cell_start_.data()};
+    return GridView{c_.grid,           key_.data(),           particle_block_.data(), block_neighbours_.data(),
+                    cell_start_.data(), neighbour_list_.data(), neighbour_count_.data()};
   }
   const SimConstants& constants() const { return c_; }
   ParticleState& state() { return s_; }
@@ -46,9 +48,16 @@ class CpuBackend final : public Backend {
   ParticleState s_;
   ParticleState sorted_;              // reorder target, swapped with s_
   // The grid (grid_build.h): sorted keys, block of each particle, blocks' first particles and codes, cell
-  // tables and neighbours; order_[j]: the particle that goes to slot j.
-  std::vector<uint64_t> unsorted_key_, key_, block_code_;
-  std::vector<int32_t> order_, particle_block_, block_begin_, block_neighbours_, cell_start_;
+  // tables and neighbours, neighbour lists.
+  struct SortRecord {
+    uint64_t key;
+    int32_t id, index;
+  };
+  std::vector<SortRecord> sort_records_;
+  std::vector<uint64_t> key_, block_code_;
+  std::vector<int32_t> particle_block_, block_begin_, block_neighbours_, cell_start_;
+  std::vector<int32_t> neighbour_list_, neighbour_count_;
+  NeighbourListChoice list_choice_;
   PhaseTimes times_;
 };
 

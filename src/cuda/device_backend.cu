@@ -45,13 +45,16 @@ struct PredictFn {
 
 // Occupancy targets of issue 11 (kBlocksPerSm, see launch): density 64 registers (4 blocks of 256 per
 // SM), forces 80 (3 blocks). Ignored by the host build.
+// One kernel per density method: a kernel that held both (density_of's run-time switch) needed the
+// registers of the larger, and spilled under the bound.
+template <bool kSummation>
 struct DensityFn {
   static constexpr int kBlocksPerSm = 4;
   ConstantsRef c;
   GridView g;
   ParticleView p;
   float dt;
-  SPH_KERNEL_FN void operator()(int32_t i) const { density_of(*c, g, p, i, dt); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { density_with<kSummation>(*c, g, p, i, dt); }
 };
 
 struct PressureFn {
@@ -294,9 +297,14 @@ class DeviceBackend final : public Backend {
   }
 
   // Sort by (cell key, id) and build the block tables (device_grid.h), moving every array into that order.
-  void build_grid() { grid_.build(c_.grid, d_, sorted_, with_temporaries(temporary_)); }
+  void build_grid() { grid_.build(c_.grid, c_.kernel.h2, d_, sorted_, with_temporaries(temporary_)); }
 
-  void density(float dt) { launch(n(), DensityFn{constants(), grid_view(), d_.view(), dt}); }
+  void density(float dt) {
+    if (c_.density == DensityMethod::Summation)
+      launch(n(), DensityFn<true>{constants(), grid_view(), d_.view(), dt});
+    else
+      launch(n(), DensityFn<false>{constants(), grid_view(), d_.view(), dt});
+  }
   void pressure() { launch(n(), PressureFn{constants(), d_.view()}); }
   void forces() { launch(n(), ForcesFn{constants(), grid_view(), d_.view()}); }
 

@@ -3,12 +3,14 @@
 // and prefix sums. Its memory grows with the particle count only (grid.h).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 
 #include <thrust/scan.h>
 #include <thrust/sort.h>
 
 #include "../common/grid_build.h"
+#include "../common/neighbour_list_choice.h"
 #include "device_arrays.h"
 #include "device_launch.h"
 
@@ -76,6 +78,21 @@ struct BlockTablesFn {
   }
 };
 
+// The CPU build's neighbour lists (grid.h): not on a GPU, whose candidate loop has no branch predictor to
+// spare and whose memory traffic a list would double.
+template <bool kBranchFree>
+struct NeighbourListFn {
+  GridView g;
+  const Vec3* pos;
+  float h2;
+  int32_t* list;
+  int32_t* count;
+  SPH_HD void operator()(int32_t a) const {
+    count[a] = list_neighbours<kBranchFree>(g, pos, a, h2, list + int64_t(a) * kNeighbourListCapacity,
+                                            kNeighbourListCapacity);
+  }
+};
+
 class DeviceGrid {
  public:
   // Device bytes per particle for the grid, assuming blocks of at least 8 particles on average (a dense
@@ -85,7 +102,7 @@ class DeviceGrid {
 
   // Sorts d by (cell key, id) (sorted: the reordering buffer, swapped with d) and builds the tables.
   template <class Policy>
-  void build(const GridGeometry& g, DeviceArrays& d, DeviceArrays& sorted, Policy policy) {
+  void build(const GridGeometry& g, float h2, DeviceArrays& d, DeviceArrays& sorted, Policy policy) {
     const int32_t n = int32_t(d.size());
     key_.resize(std::size_t(n));
     order_.resize(std::size_t(n));
@@ -109,10 +126,32 @@ class DeviceGrid {
     block_neighbours_.resize(std::size_t(blocks_) * kBlockNeighbours);
     launch(blocks_, BlockTablesFn{raw(key_), raw(block_begin_), raw(block_code_), blocks_, raw(cell_start_),
                                   raw(block_neighbours_)});
+#if !defined(__CUDACC__)
+    neighbour_list_.resize(std::size_t(n) * kNeighbourListCapacity);
+    neighbour_count_.resize(std::size_t(n));
+    GridView search = view(g);
+    search.neighbour_list = nullptr;
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool branch_free = list_choice_.branch_free();
+    if (branch_free)
+      launch(n, NeighbourListFn<true>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_)});
+    else
+      launch(n, NeighbourListFn<false>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_)});
+    list_choice_.record(branch_free, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                        std::size_t(n));
+#else
+    (void)h2;
+#endif
   }
 
   GridView view(const GridGeometry& g) const {
-    return GridView{g, raw(key_), raw(particle_block_), raw(block_neighbours_), raw(cell_start_)};
+    return GridView{g,
+                    raw(key_),
+                    raw(particle_block_),
+                    raw(block_neighbours_),
+                    raw(cell_start_),
+                    neighbour_list_.empty() ? nullptr : raw(neighbour_list_),
+                    neighbour_count_.empty() ? nullptr : raw(neighbour_count_)};
   }
 
  private:
@@ -127,6 +166,8 @@ class DeviceGrid {
 
   DeviceVector<uint64_t> key_, block_code_;
   DeviceVector<int32_t> order_, flag_, particle_block_, block_begin_, cell_start_, block_neighbours_;
+  DeviceVector<int32_t> neighbour_list_, neighbour_count_;  // host build only
+  NeighbourListChoice list_choice_;
   int32_t blocks_ = 0;
 };
 
