@@ -283,8 +283,9 @@ TEST_CASE("a jet with recycling and an absorbing ground matches the reference", 
   if (bitwise()) CHECK(bit_identical(ref, dev));
 }
 
-// Issue 11, Build item 5: the kernel that writes the demo's vertex buffers through interop gives, bit for
-// bit, what the host path uploads when interop is off (render/particle_colours.h), in every colour mode.
+// Issue 11, Build item 5: the kernel that writes the demo's vertex buffers through interop gives what the
+// host path uploads when interop is off (render/particle_colours.h), in every colour mode: bit for bit on
+// host and on cuda's --fmad=false build.
 TEST_CASE("the interop render kernel gives the host upload path's positions and colours", "[device][render]") {
   sph::Simulation sim(scene_file("viscosity_cubes.json", {"resolution.particles_across=6"}), sph::backend_factory(device_name()), 1.0);
   while (sim.time() < 0.17) sim.advance();  // just after landing: speeds, pressures, density errors vary
@@ -301,10 +302,15 @@ TEST_CASE("the interop render kernel gives the host upload path's positions and 
     REQUIRE(positions.size() == ps.size());
     REQUIRE(colours.size() == ps.size());
     CHECK(std::memcmp(positions.data(), ps.pos.data(), ps.size() * sizeof(sph::Vec3)) == 0);
+    // Bit for bit where the build gives the reference's arithmetic; nvcc's default fused multiply-adds
+    // (issue 11, item 2) move a colour channel in [0, 1] by a few ulps, far below 1e-5.
+    const float tolerance = bitwise() ? 0.0f : 1e-5f;
     std::size_t differ = 0;
     std::set<std::tuple<float, float, float>> distinct;
     for (std::size_t i = 0; i < ps.size(); ++i) {
-      differ += std::memcmp(&colours[i], &expected[i], sizeof(sph::Vec3)) != 0;
+      const sph::Vec3 d = colours[i] - expected[i];
+      differ += bitwise() ? std::memcmp(&colours[i], &expected[i], sizeof(sph::Vec3)) != 0
+                          : !(std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)}) <= tolerance);
       distinct.insert({expected[i].x, expected[i].y, expected[i].z});
     }
     CHECK(differ == 0);
