@@ -14,6 +14,7 @@
 //   RESULT: ... , 0   interop works and gives the host path's positions and colours
 //   FAIL: ...,    1   interop fell back or wrote something else
 //   SKIP: ...,    77  no GPU, no EGL, or no OpenGL context on the GPU (the reason is named)
+// With an argument N it also times one write on the dam break at N particles across (80: about 1M).
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/gl.h>
@@ -23,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -161,7 +163,18 @@ double compare_modes(sph::Backend& b, const sph::SimConstants& c, const Gl& gl, 
   return worst;
 }
 
-int probe() {
+// Milliseconds of one interop write (speed colours, the demo's default), averaged over 20; -1 when the
+// back end falls back.
+double write_ms(sph::Backend& b, const sph::GlBuffers& req, std::string& why) {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < 20; ++i)
+    if (!b.write_gl_buffers(req, why)) return -1.0;
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / 20.0;
+}
+
+// timing_across > 0: also times the write on the dam break with that many particles across the column
+// (80: about 1M particles, the demo's target of 60 fps).
+int probe(int timing_across) {
   std::string why;
   if (!sph::cuda_device_available(&why)) return skip("no GPU: " + why);
   Gl gl;
@@ -171,8 +184,8 @@ int probe() {
       !gl.ext(gl.buffer_data, "glBufferData") || !gl.ext(gl.get_buffer_sub_data, "glGetBufferSubData") ||
       !gl.ext(gl.delete_buffers, "glDeleteBuffers") || !gl.ext(gl.get_error, "glGetError"))
     return fail("the OpenGL context lacks buffer functions");
-  const sph::Scene scene = sph::load_scene(std::string(SPH_SOURCE_DIR) + "/scenes/dam_break.json", {});
-  auto sim = std::make_unique<sph::Simulation>(scene, sph::backend_factory("cuda"), 1.0);
+  const std::string scene_path = std::string(SPH_SOURCE_DIR) + "/scenes/dam_break.json";
+  auto sim = std::make_unique<sph::Simulation>(sph::load_scene(scene_path, {}), sph::backend_factory("cuda"), 1.0);
   for (int i = 0; i < 20; ++i) sim->advance();
   sph::Backend& b = sim->backend();
   GLuint vbo[2] = {0, 0};
@@ -193,12 +206,20 @@ int probe() {
   allocate(2 * n);
   const double second = compare_modes(b, sim->setup().constants, gl, vbo, 2 * n, 2, why);
   if (second < 0.0) return fail("after reallocation, on " + renderer + ": " + why);
-  // Time of one interop write (speed colours, the demo's default), averaged.
-  sph::GlBuffers req{vbo[0], vbo[1], 2 * n, 2, sph::RenderColouring{1, 0.0f, 1.0f}};
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int i = 0; i < 20; ++i)
-    if (!b.write_gl_buffers(req, why)) return fail("interop fell back after working: " + why);
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / 20.0;
+  const double ms = write_ms(b, sph::GlBuffers{vbo[0], vbo[1], 2 * n, 2, sph::RenderColouring{1, 0.0f, 1.0f}}, why);
+  if (ms < 0.0) return fail("interop fell back after working: " + why);
+  std::string large;
+  if (timing_across > 0) {
+    b.release_gl_buffers();  // the 16k back end lets go before the buffers grow for the large one
+    sim = std::make_unique<sph::Simulation>(
+        sph::load_scene(scene_path, {"resolution.particles_across=" + std::to_string(timing_across)}),
+        sph::backend_factory("cuda"), 1.0);
+    const std::size_t big = sim->backend().size();
+    allocate(big);
+    const double big_ms = write_ms(sim->backend(), sph::GlBuffers{vbo[0], vbo[1], big, 3, sph::RenderColouring{1, 0.0f, 1.0f}}, why);
+    if (big_ms < 0.0) return fail("interop fell back at " + std::to_string(big) + " particles: " + why);
+    large = "; " + std::to_string(big) + " particles: " + std::to_string(big_ms) + " ms per write";
+  }
   sim.reset();  // the back end unregisters the buffers before they are deleted
   gl.delete_buffers(2, vbo);
   if (const GLenum e = gl.get_error(); e != GL_NO_ERROR) return fail("OpenGL error " + std::to_string(e) + " on " + renderer);
@@ -206,16 +227,21 @@ int probe() {
   if (std::max(first, second) > tolerance)
     return fail("colours differ from the host path by " + std::to_string(std::max(first, second)) + " on " + renderer);
   std::printf("RESULT: interop on %s: %zu particles, positions bit-identical, colours within %.1e of the host path "
-              "(5 modes, also after reallocation), %.3f ms per write\n",
-              renderer.c_str(), n, std::max(first, second), ms);
+              "(5 modes, also after reallocation), %.3f ms per write%s\n",
+              renderer.c_str(), n, std::max(first, second), ms, large.c_str());
   return 0;
 }
 
 }  // namespace
 
-int main() {
+// Usage: sph_interop_probe [PARTICLES_ACROSS], the dam break resolution at which the write is also timed.
+int main(int argc, char** argv) {
+  char* end = nullptr;
+  const long timing_across = argc > 1 ? std::strtol(argv[1], &end, 10) : 0;
+  if (argc > 2 || (argc > 1 && (*end != '\0' || end == argv[1])) || timing_across < 0 || timing_across > 1000)
+    return fail("usage: sph_interop_probe [PARTICLES_ACROSS, 0 to 1000]");
   try {
-    return probe();
+    return probe(int(timing_across));
   } catch (const std::exception& e) {
     return fail(e.what());
   }
