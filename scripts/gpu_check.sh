@@ -3,12 +3,13 @@
 #
 #   scripts/gpu_check.sh --prepare [--bundle DIR]
 #       Here, where nvcc is (no GPU needed): builds for sm_90 only, CUDA runtime linked statically,
-#         DIR/bin/default  the default Release build: sph_run, sph_bench, sph_device_tests
+#         DIR/bin/default  the default Release build: sph_run, sph_bench, sph_device_tests, sph_interop_probe
 #         DIR/bin/bitwise  the --fmad=false build (SPH_CUDA_FMAD=OFF): sph_run, sph_device_tests, which
 #                          give host's bits on cuda and assert it
-#       and collects the scenes, the test data and the OpenMP runtime (DIR/lib) beside them. Checks with
-#       ldd that nothing else is missing on a machine with a driver but no Debian packages, and that DIR
-#       stays under 64 MiB. Build trees go to DIR.build (not needed there). DIR: out/gpu_check.
+#       and collects the scenes, the test data, the OpenMP runtime (DIR/lib) and the EGL loader (glvnd's
+#       libEGL.so.1 and libGLdispatch.so.0, DIR/egl, used only where the machine has none) beside them.
+#       Checks with ldd that nothing else is missing on a machine with a driver but no Debian packages,
+#       and that DIR stays under 64 MiB. Build trees go to DIR.build (not needed there). DIR: out/gpu_check.
 #
 #   scripts/gpu_check.sh --run [--bundle DIR] [--results RES]
 #       There, on the GPU machine (repository and DIR carried), in under 8 minutes, each step with its own
@@ -16,13 +17,16 @@
 #       byte comparison (cmp) of the PLY frames of the bitwise sph_run on the dam break (penalty and mirror
 #       walls), the water jet at low resolution past 0.85 s (it reaches the absorbing ground), obstacles,
 #       viscosity_cubes and drop_zero_g with XSPH; compute-sanitizer memcheck on a short run when present;
-#       sph_bench on cuda at about 16k, 100k, 1M and 4M particles; last, the device tests on cuda's default
-#       build. Writes RES/summary.txt (pass/fail table and figures), RES/steps.log and RES/bench.csv
+#       sph_bench on cuda at about 16k, 100k, 1M and 4M particles; CUDA-OpenGL interop in a headless EGL
+#       context (sph_interop_probe: the cuda back end writes vertex buffers, read back and compared with
+#       the host path); last, the device tests on cuda's default build. Writes RES/summary.txt (pass/fail table and figures), RES/steps.log and RES/bench.csv
 #       (RES: DIR/results).
 #       Without a GPU every GPU step reports "skipped: no GPU". Exit status 1 when a step failed, 2 when
 #       none failed but the time budget (GPU_CHECK_SECONDS, 450) left some not run, else 0.
 #
-# The demo is not in the bundle: it needs Debian's GLFW, GLEW and Dear ImGui, which that machine lacks.
+# The demo is not in the bundle: it needs Debian's GLFW (X11 only in 3.3), GLEW, libGL, Dear ImGui and the
+# X11 client libraries (ldd), and an X server; a bare GPU machine has none of them. sph_interop_probe
+# stands in: the demo's interop path (the back end's write_gl_buffers) in an EGL context, no display.
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 MODE=""
@@ -33,7 +37,7 @@ while [ $# -gt 0 ]; do
     --prepare|--run) MODE="${1#--}" ;;
     --bundle) BUNDLE="$(realpath -m "${2:?--bundle needs a folder}")"; shift ;;
     --results) RES="$(realpath -m "${2:?--results needs a folder}")"; shift ;;
-    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,29p' "$0"; exit 0 ;;
     *) echo "gpu_check.sh: unknown argument '$1'; use --prepare or --run [--bundle DIR] [--results RES]" >&2; exit 1 ;;
   esac
   shift
@@ -48,7 +52,7 @@ prepare() {
   rm -rf "$BUNDLE" && mkdir -p "$BUNDLE.build"  "$BUNDLE/bin" "$BUNDLE/lib" "$BUNDLE/src/tests" || exit 1
   local kind fmad targets
   for kind in bitwise default; do
-    if [ $kind = bitwise ]; then fmad=OFF; targets="sph_run sph_device_tests"; else fmad=ON; targets="sph_run sph_bench sph_device_tests"; fi
+    if [ $kind = bitwise ]; then fmad=OFF; targets="sph_run sph_device_tests"; else fmad=ON; targets="sph_run sph_bench sph_device_tests sph_interop_probe"; fi
     echo "== building the $kind build (sm_90, SPH_CUDA_FMAD=$fmad): $targets"
     cmake -S "$ROOT" -B "$BUNDLE.build/$kind" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES=90 \
           -DCMAKE_CUDA_RUNTIME_LIBRARY=Static -DSPH_CUDA_FMAD=$fmad -DSPH_ENABLE_CUDA=ON >"$BUNDLE.build/$kind.configure.log" 2>&1 \
@@ -73,6 +77,13 @@ prepare() {
   local lib missing=0 f
   lib="$(g++ -print-file-name=libgomp.so.1)"
   cp -L "$lib" "$BUNDLE/lib/" || exit 1
+  # The probe opens libEGL.so.1 at run time (dlopen): glvnd's vendor-neutral loader, which finds the
+  # NVIDIA driver's EGL through its vendor file. Kept apart from DIR/lib: used only where the machine has none.
+  mkdir -p "$BUNDLE/egl" || exit 1
+  for lib in libEGL.so.1 libGLdispatch.so.0; do
+    f="$(ldconfig -p | awk -v n="$lib" '$1 == n && /x86-64/ {print $NF; exit}')"
+    [ -n "$f" ] && cp -L "$f" "$BUNDLE/egl/" || { echo "gpu_check.sh: $lib not found here (Debian: libegl1, libglvnd0)" >&2; exit 1; }
+  done
   : >"$BUNDLE/ldd.txt"
   for f in "$BUNDLE"/bin/*/*; do
     echo "$f:" >>"$BUNDLE/ldd.txt"
@@ -149,6 +160,21 @@ frames_match() {
   echo "RESULT: $n frames byte-identical"
 }
 
+# The interop probe with an EGL loader and the NVIDIA EGL vendor file, where the machine lacks them.
+interop_probe() {
+  local egl="" f
+  ldconfig -p 2>/dev/null | grep -q 'libEGL\.so\.1 ' || egl="$BUNDLE/egl:"
+  [ -d /usr/local/nvidia/lib64 ] && egl="$egl/usr/local/nvidia/lib64:"
+  if [ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" ]; then
+    for f in /usr/share/glvnd/egl_vendor.d/10_nvidia.json /etc/glvnd/egl_vendor.d/10_nvidia.json \
+             /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json; do
+      [ -f "$f" ] && { export __EGL_VENDOR_LIBRARY_FILENAMES="$f"; break; }
+    done
+  fi
+  echo "EGL loader path: ${egl:-(the system one)}; vendor file: ${__EGL_VENDOR_LIBRARY_FILENAMES:-(searched by glvnd)}"
+  LD_LIBRARY_PATH="$egl$LD_LIBRARY_PATH" "$BUNDLE/bin/default/sph_interop_probe" 80  # also timed at about 1M
+}
+
 memcheck() {
   local out
   out="$(compute-sanitizer --tool memcheck --error-exitcode 9 "$BUNDLE/bin/default/sph_run" "$SRC/scenes/dam_break.json" \
@@ -173,7 +199,7 @@ run() {
     mkdir -p "$(dirname "$SRC")" 2>/dev/null && ln -sfn "$BUNDLE/src" "$SRC" 2>/dev/null \
       || { echo "gpu_check.sh: cannot make $SRC point at $BUNDLE/src (the built-in scene path)" >&2; exit 1; }
   fi
-  export -f frames_match memcheck
+  export -f frames_match memcheck interop_probe
   export WORK SRC BUNDLE
   local gpu=0 facts="none"
   if command -v nvidia-smi >/dev/null && nvidia-smi -L 2>/dev/null | grep -q '^GPU'; then
@@ -201,16 +227,18 @@ run() {
          --dam-sizes 20 37 80 --dam-cuda 127 --workload dam_break_20 --workload dam_break_37 --workload dam_break_80 \
          --workload dam_break_127 --out "$WORK/bench"
     cp "$WORK/bench/bench.csv" "$RES/" 2>/dev/null
+    step "interop probe: cuda writes GL buffers (EGL)" 90 interop_probe
     # Last: nvcc's default fused multiply-adds against the 1e-5 tolerances (issue 11, item 2: may fail).
     step "device tests, cuda, default build (1e-5)" 150 env SPH_DEVICE_BACKEND=cuda "$BUNDLE/bin/default/sph_device_tests"
   else
     local s
     for s in "device tests, cuda, bitwise (--fmad=false)" "device tests, cuda, default build (1e-5)" \
-             "frames host = cuda (6 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M"; do
+             "frames host = cuda (6 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
+             "interop probe: cuda writes GL buffers (EGL)"; do
       skip "$s" "no GPU"
     done
   fi
-  skip "demo with interop, headless screenshot" "sph_demo needs Debian's GLFW/GLEW/ImGui; not in the bundle"
+  skip "demo with interop, headless screenshot" "sph_demo needs GLFW/GLEW/libGL/X11 and an X server; the interop probe stands in"
   {
     echo "gpu_check.sh --run, $(date -u '+%F %T') UTC, on $(hostname)"
     echo "GPU: $facts"

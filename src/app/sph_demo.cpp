@@ -49,6 +49,8 @@ class Demo {
     start(0, load(0));
     if (o.substeps > 0) panel_.substeps = o.substeps;
   }
+  // The back end unregisters the vertex buffers (interop) before particles_ deletes them.
+  ~Demo() { sim_.reset(); }
 
   // R: the current scene again, with the command line's overrides. [ and ]: the previous or next scene
   // that loads; the others are skipped with a message (stderr and panel), and the current scene stays
@@ -83,6 +85,7 @@ class Demo {
   void start(int index, std::unique_ptr<Simulation> sim) {
     scene_index_ = index;
     sim_ = std::move(sim);
+    interop_off_ = false;
     emission_note_ = false;
     const Scene& scene = sim_->scene();
     base_ = sim_->setup().constants;
@@ -214,6 +217,7 @@ class Demo {
       try {
         sim_->switch_backend(backend_factory(candidate));  // the state carries over
         backend_ = candidate;
+        interop_off_ = false;
         return;
       } catch (const std::exception& e) {
         note("back end " + candidate + " skipped: " + e.what());
@@ -298,25 +302,31 @@ class Demo {
     return camera_.target + (ndc_x * half * aspect) * right + (ndc_y * half) * up;
   }
 
-  // CUDA back end: the kernels write the VBOs through CUDA-OpenGL interop, no copy through the host.
+  // CUDA back end: the kernels write the VBOs through CUDA-OpenGL interop, no copy through the host. Where
+  // the back end cannot (no interop, or the OpenGL context is not on its GPU) the demo says why once and
+  // uploads from the host until the back end changes.
   bool write_by_interop() {
     Backend& b = sim_->backend();
-    if (b.name() != "cuda") return false;
+    if (interop_off_) return false;
     const ColourMode mode = ColourMode(panel_.colour_mode);
-    GlBuffers req;
+    if (!particles_.fits(b.size())) b.release_gl_buffers();  // unregistered before glBufferData reallocates
     particles_.reserve(b.size());
+    GlBuffers req;
     req.position_vbo = particles_.position_vbo();
     req.colour_vbo = particles_.colour_vbo();
     req.capacity = particles_.capacity();
     req.generation = particles_.generation();
-    req.colour_mode = int(mode);
     ColourRange range{0.0f, 1.0f, ""};
     if (mode == ColourMode::Speed) range = {0.0f, std::max(b.diagnose().max_speed, 1e-6f), "m/s"};
     if (mode == ColourMode::DensityError) range = {-5.0f, 5.0f, "% of rho0"};
     if (mode == ColourMode::Pressure) range = {0.0f, 0.05f * sim_->setup().constants.fluids[0].tait_b, "Pa"};
-    req.lo = range.lo;
-    req.hi = range.hi;
-    if (!b.write_gl_buffers(req)) return false;
+    req.colouring = RenderColouring{int(mode), range.lo, range.hi};
+    std::string why;
+    if (!b.write_gl_buffers(req, why)) {
+      interop_off_ = true;
+      if (!why.empty()) note("interop off, drawing through host memory: " + why);
+      return false;
+    }
     particles_.set_count(b.size());
     panel_.legend = range;
     return true;
@@ -355,7 +365,7 @@ class Demo {
   float tilt_x_ = 0.0f, tilt_z_ = 0.0f;
   double last_x_ = 0.0, last_y_ = 0.0, fps_ = 0.0;
   Clock::time_point last_frame_start_{};
-  bool single_step_ = false, screenshot_requested_ = false, emission_note_ = false;
+  bool single_step_ = false, screenshot_requested_ = false, emission_note_ = false, interop_off_ = false;
   long frames_ = 0;
 };
 

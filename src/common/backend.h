@@ -36,14 +36,20 @@ struct Diagnostics {
   int32_t non_finite = -1;   // index of a particle with a NaN or infinite position or velocity, or -1
 };
 
+// How particles are coloured for drawing: render::ColourMode and the range of the mapped quantity
+// (render/particle_colours.h). Plain numbers, so this header needs no render header.
+struct RenderColouring {
+  int colour_mode = 0;         // render::ColourMode
+  float lo = 0.0f, hi = 1.0f;  // colour range
+};
+
 // OpenGL buffers a back end may write straight into (CUDA-OpenGL interop): positions and colours as
 // 3 floats per particle. Plain integers, so this header needs no GL or CUDA header.
 struct GlBuffers {
   uint32_t position_vbo = 0, colour_vbo = 0;
   std::size_t capacity = 0;   // particles the buffers hold
   uint32_t generation = 0;    // changes whenever the buffers are reallocated (register them again)
-  int colour_mode = 0;        // render::ColourMode
-  float lo = 0.0f, hi = 1.0f; // colour range
+  RenderColouring colouring;
 };
 
 class Backend {
@@ -65,9 +71,26 @@ class Backend {
   // Replaces the constants between steps (live parameters: viscosity, stiffness, gravity, user force).
   // The grid geometry must stay the same.
   virtual void set_constants(const SimConstants& constants) = 0;
-  // Writes positions and colours into the OpenGL buffers without a copy through the host; returns false
-  // when the back end cannot (then the caller downloads and uploads).
-  virtual bool write_gl_buffers(const GlBuffers&) { return false; }
+  // Writes positions and colours into the OpenGL buffers without a copy through the host, from the thread
+  // whose OpenGL context owns them. Returns false when the back end cannot, with the reason in `why`
+  // (empty where the back end has no interop at all); then the caller downloads and uploads, and need not
+  // ask again: a back end that failed once does not retry. Throws std::runtime_error when capacity <
+  // size() or a CUDA call fails once the buffers are registered.
+  virtual bool write_gl_buffers(const GlBuffers&, std::string& why) {
+    why.clear();
+    return false;
+  }
+  // Lets go of the OpenGL buffers (unregisters them): the caller calls it before it reallocates or deletes
+  // them. A later write_gl_buffers registers them again.
+  virtual void release_gl_buffers() {}
+  // The positions and colours the interop kernel writes, into host arrays of size() elements in the back
+  // end's order (the device test compares them with the host path, render/particle_colours.h). False
+  // where the back end has no such kernel (cpu).
+  virtual bool write_render_arrays(const RenderColouring&, std::vector<Vec3>& positions, std::vector<Vec3>& colours) {
+    positions.clear();
+    colours.clear();
+    return false;
+  }
 };
 
 using BackendFactory = std::function<std::unique_ptr<Backend>(const SimConstants&)>;

@@ -23,11 +23,11 @@
 #include "../common/grid.h"
 #include "../common/integrate.h"
 #include "../common/pressure.h"
-#include "../render/colour_map.h"
 #include "device_arrays.h"
 #include "device_constants.h"
 #include "device_faults.h"
 #include "device_grid.h"
+#include "device_interop.h"
 #include "device_launch.h"
 #include "device_backend.h"
 
@@ -134,24 +134,6 @@ struct DiagCombineFn {
   }
 };
 
-// Interop: positions and colours written by a kernel into mapped OpenGL buffers (the same colour maps as
-// the host path, src/render/colour_map.h).
-struct WriteRenderFn {
-  ConstantsRef c;
-  ParticleView p;
-  Vec3* positions;
-  Vec3* colours;
-  int mode;
-  float lo, hi;
-  SPH_KERNEL_FN void operator()(int32_t i) const {
-    positions[i] = p.pos[i];
-    const Vec3 col = render::particle_colour(render::ColourMode(mode), lo, hi, length(p.vel[i]), p.density[i],
-                                             (*c).fluids[p.fluid[i]].rest_density, p.pressure[i], p.fluid[i],
-                                             cell_index((*c).grid, p.pos[i]));
-    colours[i] = col;
-  }
-};
-
 // ---- the back end -----------------------------------------------------------------------------------------
 
 class DeviceBackend final : public Backend {
@@ -172,41 +154,32 @@ class DeviceBackend final : public Backend {
     constants_.changed();
   }
 
-#if defined(SPH_DEVICE_GL_INTEROP)
-  ~DeviceBackend() override { unregister_gl(); }
-
-  bool write_gl_buffers(const GlBuffers& b) override {
-    if (std::size_t(n()) > b.capacity) throw std::runtime_error("interop buffers hold fewer particles than the simulation");
-    if (b.generation != gl_generation_ || !gl_registered_) {
-      unregister_gl();
-      CUDA_CHECK(cudaGraphicsGLRegisterBuffer(&gl_[0], b.position_vbo, cudaGraphicsRegisterFlagsWriteDiscard));
-      CUDA_CHECK(cudaGraphicsGLRegisterBuffer(&gl_[1], b.colour_vbo, cudaGraphicsRegisterFlagsWriteDiscard));
-      gl_registered_ = true;
-      gl_generation_ = b.generation;
-    }
-    CUDA_CHECK(cudaGraphicsMapResources(2, gl_, 0));
-    void* pos = nullptr;
-    void* col = nullptr;
-    std::size_t bytes_pos = 0, bytes_col = 0;
-    CUDA_CHECK(cudaGraphicsResourceGetMappedPointer(&pos, &bytes_pos, gl_[0]));
-    CUDA_CHECK(cudaGraphicsResourceGetMappedPointer(&col, &bytes_col, gl_[1]));
-    launch(n(), WriteRenderFn{constants(), d_.view(), static_cast<Vec3*>(pos), static_cast<Vec3*>(col), b.colour_mode, b.lo, b.hi});
-    CUDA_CHECK(cudaGraphicsUnmapResources(2, gl_, 0));  // before OpenGL draws from them
+  // Drawing (device_interop.h): the render kernel into host arrays (tests), or into the demo's OpenGL
+  // buffers through interop in the cuda build.
+  bool write_render_arrays(const RenderColouring& r, std::vector<Vec3>& positions, std::vector<Vec3>& colours) override {
+    run_phase(name_, "render arrays", [&] {
+      DeviceVector<Vec3> pos(d_.size()), col(d_.size());
+      write_render(constants(), d_.view(), n(), thrust::raw_pointer_cast(pos.data()), thrust::raw_pointer_cast(col.data()), r);
+      positions.resize(d_.size());
+      colours.resize(d_.size());
+      thrust::copy(pos.begin(), pos.end(), positions.begin());
+      thrust::copy(col.begin(), col.end(), colours.begin());
+    });
     return true;
   }
 
- private:
-  void unregister_gl() {
-    if (!gl_registered_) return;
-    cudaGraphicsUnregisterResource(gl_[0]);  // no throw from a destructor path
-    cudaGraphicsUnregisterResource(gl_[1]);
-    gl_registered_ = false;
+#if defined(SPH_DEVICE_GL_INTEROP)
+  bool write_gl_buffers(const GlBuffers& b, std::string& why) override {
+    if (d_.size() > b.capacity) throw std::runtime_error("interop buffers hold fewer particles than the simulation");
+    if (!gl_.attach(b, why)) return false;
+    run_phase(name_, "interop", [&] {
+      GlMapping mapped(gl_.resources());
+      write_render(constants(), d_.view(), n(), mapped.buffer(0, d_.size()), mapped.buffer(1, d_.size()), b.colouring);
+      mapped.unmap();  // before OpenGL draws from them
+    });
+    return true;
   }
-  cudaGraphicsResource_t gl_[2] = {nullptr, nullptr};
-  bool gl_registered_ = false;
-  uint32_t gl_generation_ = 0;
-
- public:
+  void release_gl_buffers() override { gl_.release(); }
 #endif
 
   void initialise_forces() override {
@@ -334,6 +307,9 @@ class DeviceBackend final : public Backend {
   DeviceVector<uint8_t> keep_flag_;
   ParticleState host_;
   PhaseTimes times_;
+#if defined(SPH_DEVICE_GL_INTEROP)
+  GlInterop gl_;  // registered OpenGL buffers, unregistered by its destructor
+#endif
 };
 
 }  // namespace SPH_DEVICE_NS

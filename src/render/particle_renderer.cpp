@@ -1,9 +1,6 @@
 #include "particle_renderer.h"
 
 #include <algorithm>
-#include <cmath>
-
-#include "../common/grid.h"
 
 namespace sph::render {
 
@@ -27,27 +24,8 @@ ParticleRenderer::~ParticleRenderer() {
 
 ColourRange ParticleRenderer::upload(const ParticleState& ps, const SimConstants& c, ColourMode mode) {
   const std::size_t n = ps.size();
-  colours_.resize(n);
-  // The range of the mapped quantity, for the colour map and the legend.
-  ColourRange range{0.0f, 1.0f, ""};
-  if (mode == ColourMode::Speed) {
-    float vmax = 1e-6f;
-    for (std::size_t i = 0; i < n; ++i) vmax = std::max(vmax, length(ps.vel[i]));
-    range = {0.0f, vmax, "m/s"};
-  } else if (mode == ColourMode::Pressure) {
-    float lo = 0.0f, hi = 1e-6f;
-    for (std::size_t i = 0; i < n; ++i) {
-      lo = std::min(lo, ps.pressure[i]);
-      hi = std::max(hi, ps.pressure[i]);
-    }
-    range = {lo, hi, "Pa"};
-  } else if (mode == ColourMode::DensityError) {
-    range = {-5.0f, 5.0f, "% of rho0"};
-  }
-  for (std::size_t i = 0; i < n; ++i)
-    colours_[i] = particle_colour(mode, range.lo, range.hi, length(ps.vel[i]), ps.density[i],
-                                  c.fluids[ps.fluid[i]].rest_density, ps.pressure[i], ps.fluid[i],
-                                  cell_index(c.grid, ps.pos[i]));
+  const ColourRange range = colour_range(ps, mode);
+  colour_particles(ps, c, mode, range, colours_);
   count_ = GLsizei(n);
   reserve(n);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
@@ -59,7 +37,7 @@ ColourRange ParticleRenderer::upload(const ParticleState& ps, const SimConstants
 }
 
 void ParticleRenderer::reserve(std::size_t n) {
-  if (n <= capacity_ && capacity_ > 0) return;
+  if (fits(n)) return;
   capacity_ = std::max<std::size_t>(std::max<std::size_t>(n, 1024), 2 * capacity_);
   for (GLuint vbo : vbo_) {
     glBindBuffer(GL_ARRAY_BUFFER, vbo);

@@ -9,15 +9,11 @@
 #include "../common/particle_state.h"
 #include "../common/params.h"
 #include "colour_map.h"
+#include "particle_colours.h"
 #include "gl_program.h"
 #include "math3d.h"
 
 namespace sph::render {
-
-struct ColourRange {
-  float lo = 0.0f, hi = 1.0f;
-  const char* unit = "";
-};
 
 class ParticleRenderer {
  public:
@@ -32,8 +28,10 @@ class ParticleRenderer {
   void draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat) const;
 
   // For interop: make both VBOs hold at least n particles (growing by doubling; every reallocation
-  // changes generation()), then let the back end write them and set the count to draw.
+  // changes generation()), then let the back end write them and set the count to draw. A reallocation
+  // (fits(n) false) needs the back end to have unregistered the VBOs first (Backend::release_gl_buffers).
   void reserve(std::size_t n);
+  bool fits(std::size_t n) const { return n <= capacity_ && capacity_ > 0; }
   void set_count(std::size_t n) { count_ = GLsizei(n); }
   GLuint position_vbo() const { return vbo_[0]; }
   GLuint colour_vbo() const { return vbo_[1]; }
