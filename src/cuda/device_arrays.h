@@ -5,9 +5,10 @@
 #include <thrust/copy.h>
 #include <thrust/device_vector.h>
 #include <thrust/execution_policy.h>
-#include <thrust/gather.h>
 
 #include "../common/particle_state.h"
+#include "../common/particle_view.h"
+#include "../common/sph_hd.h"
 
 #if defined(__CUDACC__)
 #include <cuda_runtime.h>
@@ -89,6 +90,22 @@ struct QuietTemporaryAllocator {};
 inline auto with_temporaries(QuietTemporaryAllocator&) { return thrust::device; }
 #endif
 
+// dst[j] = src[index[j]] for every particle field, for j < *count (for every j of dst when count is null).
+// One loop for all fields: one launch (nvcc) or one parallel loop (OpenMP) where a gather per field took
+// one for each of the 13 fields.
+struct GatherFn {
+  ParticleView src, dst;
+  const int32_t* index;
+  const int32_t* count;
+  SPH_HD void operator()(int32_t j) const {
+    if (count != nullptr && j >= *count) return;
+    const int32_t i = index[j];
+#define SPH_GATHER_FIELD(type, name) dst.name[j] = src.name[i];
+    SPH_PARTICLE_FIELDS(SPH_GATHER_FIELD)
+#undef SPH_GATHER_FIELD
+  }
+};
+
 struct DeviceArrays {
 #define SPH_DECLARE_DEVICE_FIELD(type, name) DeviceVector<type> name;
   SPH_PARTICLE_FIELDS(SPH_DECLARE_DEVICE_FIELD)
@@ -131,10 +148,8 @@ struct DeviceArrays {
   }
   // this[j] = src[index[j]] for every field; this takes index.size() particles.
   void gather_from(DeviceArrays& src, const DeviceVector<int32_t>& index) {
-    each(src, [&](auto& dst_field, auto& src_field) {
-      dst_field.resize(index.size());
-      thrust::gather(device_policy(), index.begin(), index.end(), src_field.begin(), dst_field.begin());
-    });
+    resize(index.size());
+    launch(int32_t(index.size()), GatherFn{src.view(), view(), thrust::raw_pointer_cast(index.data()), nullptr});
   }
 
   ParticleView view() {

@@ -150,21 +150,6 @@ struct IsSetFn {
   SPH_HD bool operator()(uint8_t flag) const { return flag != 0; }
 };
 
-// Recycle on cuda, where the host does not know how many particles stay until the step's end: the kept
-// ones, in order (keep, from the stable selection), into dst, by threads j < *kept.
-struct GatherKeptFn {
-  ParticleView src, dst;
-  const int32_t* keep;
-  const int32_t* kept;
-  SPH_HD void operator()(int32_t j) const {
-    if (j >= *kept) return;
-    const int32_t i = keep[j];
-#define SPH_GATHER_FIELD(type, name) dst.name[j] = src.name[i];
-    SPH_PARTICLE_FIELDS(SPH_GATHER_FIELD)
-#undef SPH_GATHER_FIELD
-  }
-};
-
 // Whether any particle can expire (params.h, expired): some fluid has a lifetime or some shape absorbs.
 // Otherwise the recycle phase has nothing to do and is skipped.
 inline bool particles_can_expire(const SimConstants& c) {
@@ -499,7 +484,7 @@ class DeviceBackend final : public Backend {
                                         keep_.data().get(), kept, count, kStream);
     });
     sorted_.resize(std::size_t(count));
-    launch(count, GatherKeptFn{d_.view(), sorted_.view(), thrust::raw_pointer_cast(keep_.data()), kept});
+    launch(count, GatherFn{d_.view(), sorted_.view(), thrust::raw_pointer_cast(keep_.data()), kept});
     std::swap(d_, sorted_);
     recycled_ = true;
 #else

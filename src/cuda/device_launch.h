@@ -2,11 +2,11 @@
 // kernel of the project's own, enqueued on the back end's stream without waiting (the step waits once, at
 // its end: device_faults.h); under g++ Thrust's OpenMP for_each.
 //
-// kStream and device_policy(): where all the back end's device work goes, in order. Under nvcc one stream,
-// CUDA's legacy default stream: the project's kernels, CUB's algorithms and Thrust's (par_nosync: no
-// synchronisation at the end of each algorithm, issue 11 item 6) all run in the order they are enqueued,
-// and so do thrust::device_vector's own allocations and copies, which always use the default stream. A
-// stream of our own would need explicit ordering against those.
+// kStream: where all the back end's device work goes, in order. Under nvcc one stream, CUDA's legacy
+// default stream: the project's kernels, CUB's algorithms and Thrust's (par_nosync: no synchronisation at
+// the end of each algorithm, issue 11 item 6) all run in the order they are enqueued, and so do
+// thrust::device_vector's own allocations and copies, which always use the default stream. A stream of
+// our own would need explicit ordering against those.
 #pragma once
 
 #include <cstdint>
@@ -18,8 +18,6 @@
 
 #if defined(__CUDACC__)
 #include <cuda_runtime.h>
-
-#include <thrust/system/cuda/execution_policy.h>
 #endif
 
 namespace sph {
@@ -27,9 +25,6 @@ namespace SPH_DEVICE_NS {
 
 #if defined(__CUDACC__)
 inline const cudaStream_t kStream = nullptr;  // the legacy default stream
-
-// Thrust's policy for algorithms without temporary storage (gather, fill): enqueued, not waited for.
-inline auto device_policy() { return thrust::cuda::par_nosync.on(kStream); }
 // The project's own kernels, one thread per index. Thrust's for_each (two indices per thread, bounded to
 // 256 threads) took forces to 114 registers and spilled in density. A functor may set kBlocksPerSm, the
 // blocks of kBlockThreads that must fit on one SM (__launch_bounds__), which caps its registers at
@@ -68,8 +63,6 @@ void launch(int32_t n, const F& f) {
     for_each_index<<<blocks, kBlockThreads, 0, kStream>>>(n, f);
 }
 #else
-inline auto device_policy() { return thrust::device; }
-
 template <class F>
 void launch(int32_t n, const F& f) {
   if (n > 0) thrust::for_each_n(thrust::device, thrust::counting_iterator<int32_t>(0), n, f);
