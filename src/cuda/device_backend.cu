@@ -441,7 +441,7 @@ class DeviceBackend final : public Backend {
   void settle() {
     await_step();
     if (trim_to_ < 0) return;
-    if (std::size_t(trim_to_) < d_.size()) run_phase(name_, "recycle", [&] { d_.resize(std::size_t(trim_to_)); });
+    if (std::size_t(trim_to_) < d_.size()) run_phase(name_, "recycle", [&] { d_.resize(std::size_t(trim_to_)); }, false);
     trim_to_ = -1;
   }
 
