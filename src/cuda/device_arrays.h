@@ -5,17 +5,20 @@
 #include <thrust/copy.h>
 #include <thrust/device_vector.h>
 #include <thrust/execution_policy.h>
-#include <thrust/gather.h>
 
 #include "../common/particle_state.h"
+#include "../common/particle_view.h"
+#include "../common/sph_hd.h"
 
 #if defined(__CUDACC__)
 #include <cuda_runtime.h>
 
+#include <cub/util_allocator.cuh>
 #include <thrust/system/cuda/execution_policy.h>
 
 #include "cuda_check.h"
 #endif
+#include "device_launch.h"
 
 namespace sph {
 namespace SPH_DEVICE_NS {
@@ -40,20 +43,45 @@ struct QuietFreeAllocator : thrust::device_allocator<T> {
 template <class T>
 using DeviceVector = thrust::device_vector<T, QuietFreeAllocator<T>>;
 
-// Temporary storage of Thrust's scan, select and reduce (passed as thrust::cuda::par(allocator)), freed
-// without throwing for the same reason.
-struct QuietTemporaryAllocator {
+// Temporary storage of the scan, select and reduce algorithms (Thrust's, through with_temporaries, and
+// CUB's, through cub_temporaries), from a cache: blocks come back to it when an algorithm has been
+// enqueued and are reused by later ones on the same stream, so a step allocates nothing once the sizes are
+// known (issue 11, item 6: cudaMalloc/cudaFree per algorithm and step before). Bins are powers of two from
+// 1 KiB, none too large to cache (a block wastes less than half its size). Blocks are freed without
+// throwing, for the same reason as above; the cache's destructor ignores errors too.
+class QuietTemporaryAllocator {
+ public:
   using value_type = char;
+  QuietTemporaryAllocator() = default;
+  QuietTemporaryAllocator(const QuietTemporaryAllocator&) = delete;  // Thrust takes it by reference
+  QuietTemporaryAllocator& operator=(const QuietTemporaryAllocator&) = delete;
   char* allocate(std::ptrdiff_t bytes) {
     void* p = nullptr;
-    CUDA_CHECK(cudaMalloc(&p, std::size_t(bytes)));
+    CUDA_CHECK(cache_.DeviceAllocate(&p, std::size_t(bytes), kStream));
     return static_cast<char*>(p);
   }
-  void deallocate(char* p, std::size_t) noexcept { (void)cudaFree(p); }
+  void deallocate(char* p, std::size_t) noexcept { (void)cache_.DeviceFree(p); }
+
+ private:
+  static constexpr unsigned kBinGrowth = 2, kMinBin = 10;  // 1 KiB
+  cub::CachingDeviceAllocator cache_{kBinGrowth, kMinBin};
 };
 
-// Thrust's execution policy for algorithms that need temporary storage.
-inline auto with_temporaries(QuietTemporaryAllocator& a) { return thrust::cuda::par(a); }
+// Thrust's execution policy for algorithms that need temporary storage: enqueued, not waited for.
+inline auto with_temporaries(QuietTemporaryAllocator& a) { return thrust::cuda::par_nosync(a).on(kStream); }
+
+// Runs a CUB device algorithm f(temporary, bytes) the CUB way: once to size its temporary storage, once
+// to enqueue it with storage from the cache (released at once: later users are ordered after it on the
+// stream).
+template <class F>
+void cub_temporaries(QuietTemporaryAllocator& a, F&& f) {
+  std::size_t bytes = 0;
+  CUDA_CHECK(f(static_cast<void*>(nullptr), bytes));
+  char* storage = a.allocate(std::ptrdiff_t(bytes));
+  const cudaError_t status = f(static_cast<void*>(storage), bytes);
+  a.deallocate(storage, bytes);
+  CUDA_CHECK(status);
+}
 #else
 template <class T>
 using DeviceVector = thrust::device_vector<T>;
@@ -61,6 +89,22 @@ using DeviceVector = thrust::device_vector<T>;
 struct QuietTemporaryAllocator {};
 inline auto with_temporaries(QuietTemporaryAllocator&) { return thrust::device; }
 #endif
+
+// dst[j] = src[index[j]] for every particle field, for j < *count (for every j of dst when count is null).
+// One loop for all fields: one launch (nvcc) or one parallel loop (OpenMP) where a gather per field took
+// one for each of the 13 fields.
+struct GatherFn {
+  ParticleView src, dst;
+  const int32_t* index;
+  const int32_t* count;
+  SPH_HD void operator()(int32_t j) const {
+    if (count != nullptr && j >= *count) return;
+    const int32_t i = index[j];
+#define SPH_GATHER_FIELD(type, name) dst.name[j] = src.name[i];
+    SPH_PARTICLE_FIELDS(SPH_GATHER_FIELD)
+#undef SPH_GATHER_FIELD
+  }
+};
 
 struct DeviceArrays {
 #define SPH_DECLARE_DEVICE_FIELD(type, name) DeviceVector<type> name;
@@ -90,6 +134,10 @@ struct DeviceArrays {
       thrust::copy(d.begin(), d.end(), v.begin());
     });
   }
+  // Keeps the first n particles; new ones, if n > size(), are value-initialised.
+  void resize(std::size_t n) {
+    each(*this, [n](auto& d, auto&) { d.resize(n); });
+  }
   // Appends the particles of h after the current ones.
   void append(const ParticleState& h) {
     each(h, [](auto& d, auto& v) {
@@ -100,10 +148,8 @@ struct DeviceArrays {
   }
   // this[j] = src[index[j]] for every field; this takes index.size() particles.
   void gather_from(DeviceArrays& src, const DeviceVector<int32_t>& index) {
-    each(src, [&](auto& dst_field, auto& src_field) {
-      dst_field.resize(index.size());
-      thrust::gather(index.begin(), index.end(), src_field.begin(), dst_field.begin());
-    });
+    resize(index.size());
+    launch(int32_t(index.size()), GatherFn{src.view(), view(), thrust::raw_pointer_cast(index.data()), nullptr});
   }
 
   ParticleView view() {

@@ -4,6 +4,12 @@
 //
 // The simulation constants are read from one copy (device_constants.h): the GPU's constant memory under
 // nvcc; the functors carry only views, scalars and a ConstantsRef.
+//
+// Under nvcc a step is asynchronous (issue 11, item 6): every phase is enqueued on one stream without
+// waiting, and the step ends with one reduction of the diagnostics (and of the recycled count) whose
+// result is copied to the host; the host waits for it once, when it needs it (the next step, size(),
+// diagnose(), emit(), download()). Phase times come from CUDA events (device_timers.h). Under g++ every
+// loop finishes before it returns, as before.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +20,7 @@
 #include <thrust/copy.h>
 #include <thrust/execution_policy.h>
 #include <thrust/iterator/counting_iterator.h>
+#include <thrust/iterator/transform_iterator.h>
 #include <thrust/scan.h>
 #include <thrust/transform_reduce.h>
 
@@ -29,7 +36,14 @@
 #include "device_grid.h"
 #include "device_interop.h"
 #include "device_launch.h"
+#include "device_readback.h"
+#include "device_timers.h"
 #include "device_backend.h"
+
+#if defined(__CUDACC__)
+#include <cub/device/device_reduce.cuh>
+#include <cub/device/device_select.cuh>
+#endif
 
 namespace sph {
 namespace SPH_DEVICE_NS {
@@ -103,17 +117,30 @@ struct IsSetFn {
   SPH_HD bool operator()(uint8_t flag) const { return flag != 0; }
 };
 
+// Whether any particle can expire (params.h, expired): some fluid has a lifetime or some shape absorbs.
+// Otherwise the recycle phase has nothing to do and is skipped.
+inline bool particles_can_expire(const SimConstants& c) {
+  for (int32_t f = 0; f < c.num_fluids; ++f)
+    if (c.fluids[f].lifetime > 0.0f) return true;
+  for (int32_t s = 0; s < c.num_shapes; ++s)
+    if (c.shapes[s].absorb) return true;
+  return false;
+}
+
 // Diagnostics as a deterministic reduction: ties go to the lower index, as in the serial reference.
 struct Diag {
   float max_speed;
   int32_t fastest;
   float max_accel;
   int32_t non_finite;
+  SPH_HD static Diag none() { return Diag{0.0f, -1, 0.0f, -1}; }  // of no particle: the reduction's identity
 };
 
 struct DiagOfFn {
   ParticleView p;
+  const int32_t* kept;  // when set, particles from *kept on were recycled by this step and do not count
   SPH_HD Diag operator()(int32_t i) const {
+    if (kept != nullptr && i >= *kept) return Diag::none();
     const Vec3 x = p.pos[i], v = p.vel[i];
     const float sum = x.x + x.y + x.z + v.x + v.y + v.z;
     const bool finite = sum - sum == 0.0f;  // false for NaN and infinities
@@ -134,29 +161,49 @@ struct DiagCombineFn {
   }
 };
 
+// What a step leaves for the host, read in one copy (device_readback.h): the diagnostics and, when the
+// step recycled on cuda, how many particles it kept.
+struct StepSummary {
+  Diag diag;
+  int32_t kept;
+};
+
 // ---- the back end -----------------------------------------------------------------------------------------
 
 class DeviceBackend final : public Backend {
  public:
-  DeviceBackend(const SimConstants& constants, std::string name) : c_(constants), name_(std::move(name)) {}
+  DeviceBackend(const SimConstants& constants, std::string name)
+      : c_(constants), can_expire_(particles_can_expire(constants)), name_(std::move(name)), summary_(1) {}
 
   std::string name() const override { return name_; }
   void upload(const ParticleState& state) override {
+    settle();
     run_phase(name_, "upload", [&] {
       check_memory_for(state.size());
       d_.upload(state);
     });
+    diag_current_ = false;
   }
-  std::size_t size() const override { return d_.size(); }
-  const PhaseTimes& phase_times() const override { return times_; }
+  // Waits for the last step's end when it recycled on cuda (its count comes with the diagnostics).
+  std::size_t size() const override {
+    await_step();
+    return trim_to_ >= 0 ? std::size_t(trim_to_) : d_.size();
+  }
+  // Under nvcc the phase times of enqueued work are read here, or at the step's end (device_timers.h).
+  const PhaseTimes& phase_times() const override {
+    clock_.collect(times_);
+    return times_;
+  }
   void set_constants(const SimConstants& constants) override {
     c_ = constants;
+    can_expire_ = particles_can_expire(constants);
     constants_.changed();
   }
 
   // Drawing (device_interop.h): the render kernel into host arrays (tests), or into the demo's OpenGL
   // buffers through interop in the cuda build.
   bool write_render_arrays(const RenderColouring& r, std::vector<Vec3>& positions, std::vector<Vec3>& colours) override {
+    settle();
     run_phase(name_, "render arrays", [&] {
       DeviceVector<Vec3> pos(d_.size()), col(d_.size());
       write_render(constants(), d_.view(), n(), thrust::raw_pointer_cast(pos.data()), thrust::raw_pointer_cast(col.data()), r);
@@ -170,6 +217,7 @@ class DeviceBackend final : public Backend {
 
 #if defined(SPH_DEVICE_GL_INTEROP)
   bool write_gl_buffers(const GlBuffers& b, std::string& why) override {
+    settle();
     if (d_.size() > b.capacity) throw std::runtime_error("interop buffers hold fewer particles than the simulation");
     if (!gl_.attach(b, why)) return false;
     run_phase(name_, "interop", [&] {
@@ -183,6 +231,8 @@ class DeviceBackend final : public Backend {
 #endif
 
   void initialise_forces() override {
+    settle();
+    diag_current_ = false;
     run_phase(name_, "initial forces", [&] {
       launch(n(), CopyVelocityFn{d_.view()});
       build_grid();
@@ -193,53 +243,60 @@ class DeviceBackend final : public Backend {
   }
 
   void step(float dt) override {
-    for (const Phase p : kStepPhases) step_phase(p, dt);
+    settle();
+    for (const Phase p : kStepPhases) run_step_phase(p, dt);
     ++times_.steps;
+    end_of_work();
   }
 
+  // One phase alone (tests), with the step's end: its summary (cuda) or fresh diagnostics (host).
   void step_phase(Phase p, float dt) override {
     if (p == Phase::Emit || p == Phase::Count)
       throw std::invalid_argument(name_ + ": " + phase_name(p) + " is not a phase of a step");
-    timed(p, [&] {
-      switch (p) {
-        case Phase::Predict: launch(n(), PredictFn{constants(), d_.view(), dt}); return;
-        case Phase::BuildGrid: build_grid(); return;
-        case Phase::Density: density(dt); return;
-        case Phase::Pressure: pressure(); return;
-        case Phase::Forces: forces(); return;
-        case Phase::Correct: launch(n(), CorrectFn{constants(), d_.view(), dt}); return;
-        case Phase::Boundaries:
-          if (c_.num_shapes > 0) launch(n(), BoundariesFn{constants(), d_.view(), dt});
-          return;
-        case Phase::Recycle: recycle(); return;
-        case Phase::Emit:
-        case Phase::Count: return;  // refused above
-      }
-    });
+    settle();
+    run_step_phase(p, dt);
+    end_of_work();
   }
 
+  // Emission is host work and synchronous copies: timed with the host clock on both builds. The new
+  // particles' diagnostics are taken here, on the host, when the step's are known (cuda), so that
+  // diagnose() needs no second reduction: the combination is exact (maxima and least indices).
   void emit(const std::vector<Spawn>& spawns) override {
-    timed(Phase::Emit, [&] {
+    settle();
+    const auto t0 = std::chrono::steady_clock::now();
+    run_phase(name_, phase_name(Phase::Emit), [&] {
       ParticleState extra;
       for (const Spawn& s : spawns) extra.append(s);
       check_memory_for(d_.size() + extra.size());
+      if (diag_current_) spawn_diag_ = DiagCombineFn{}(spawn_diag_, diagnostics_of(extra, n()));
       d_.append(extra);
     });
+    times_.seconds[std::size_t(Phase::Emit)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
   const ParticleState& download() override {
+    settle();
     run_phase(name_, "download", [&] { d_.download(host_); });
     return host_;
   }
 
+  // After a step on cuda: the step's reduction, read at its end. Otherwise one reduction now.
   Diagnostics diagnose() override {
+    settle();
+    if (!diag_current_) {
+#if defined(__CUDACC__)
+      run_phase(name_, "diagnostics", [&] { enqueue_summary(nullptr); }, false);
+      settle();
+#else
+      result_.diag = thrust::transform_reduce(with_temporaries(temporary_), thrust::counting_iterator<int32_t>(0),
+                                              thrust::counting_iterator<int32_t>(n()), DiagOfFn{d_.view(), nullptr},
+                                              Diag::none(), DiagCombineFn{});
+      diag_current_ = true;
+      spawn_diag_ = Diag::none();
+#endif
+    }
+    const Diag r = DiagCombineFn{}(result_.diag, spawn_diag_);
     Diagnostics out;
-    if (n() == 0) return out;
-    Diag r{};
-    run_phase(name_, "diagnostics", [&] {
-      r = thrust::transform_reduce(with_temporaries(temporary_), thrust::counting_iterator<int32_t>(0), thrust::counting_iterator<int32_t>(n()),
-                                   DiagOfFn{d_.view()}, Diag{0.0f, -1, 0.0f, -1}, DiagCombineFn{});
-    });
     out.max_speed = r.max_speed;
     out.fastest = r.fastest;
     out.max_accel = r.max_accel;
@@ -262,11 +319,94 @@ class DeviceBackend final : public Backend {
     check_device_memory(particles, per_particle, 0, d_.size() * per_particle);
   }
 
+  // A phase of the step: enqueued (cuda; checked for launch errors, waited for only with SPH_DEVICE_SYNC=1)
+  // or run (host), between the two marks of its timer.
   template <class F>
   void timed(Phase p, F&& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    run_phase(name_, phase_name(p), f);
-    times_.seconds[std::size_t(p)] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    clock_.start(p, times_);
+    run_phase(name_, phase_name(p), f, false);
+    clock_.stop(p, times_);
+    last_phase_ = phase_name(p);
+  }
+
+  StepSummary* summary() { return thrust::raw_pointer_cast(summary_.data()); }
+
+  // The diagnostics of host particles that will sit at index offset on.
+  static Diag diagnostics_of(ParticleState& ps, int32_t offset) {
+    const ParticleView v = ps.view();
+    Diag r = Diag::none();
+    for (int32_t k = 0; k < v.n; ++k) {
+      Diag d = DiagOfFn{v, nullptr}(k);
+      if (d.fastest >= 0) d.fastest += offset;
+      if (d.non_finite >= 0) d.non_finite += offset;
+      r = DiagCombineFn{}(r, d);
+    }
+    return r;
+  }
+
+#if defined(__CUDACC__)
+  // Enqueues the diagnostics of the particles (before *kept when kept is set) into the device's summary,
+  // and the summary's copy to the host; settle() reads it.
+  void enqueue_summary(const int32_t* kept) {
+    StepSummary* s = summary();
+    const auto diag_in = thrust::make_transform_iterator(thrust::counting_iterator<int32_t>(0), DiagOfFn{d_.view(), kept});
+    cub_temporaries(temporary_, [&](void* t, std::size_t& bytes) {
+      return cub::DeviceReduce::Reduce(t, bytes, diag_in, &s->diag, n(), DiagCombineFn{}, Diag::none(), kStream);
+    });
+    readback_.read_from(s);
+    pending_ = true;
+    last_phase_ = "diagnostics";
+    diag_current_ = true;
+    spawn_diag_ = Diag::none();
+  }
+#endif
+
+  // Waits for the enqueued step (the one synchronisation of a step, naming the step if a kernel faulted),
+  // then takes its summary and phase times. Const because size() needs the count a recycling step left.
+  void await_step() const {
+    if (!pending_) return;
+    pending_ = false;
+    wait_for_step(name_, last_phase_);
+    clock_.collect(times_);
+    result_ = readback_.value();
+    if (recycled_) trim_to_ = result_.kept;
+    recycled_ = false;
+  }
+  // await_step(), then drops the particles a recycling step left behind the kept ones.
+  void settle() {
+    await_step();
+    if (trim_to_ < 0) return;
+    if (std::size_t(trim_to_) < d_.size()) run_phase(name_, "recycle", [&] { d_.resize(std::size_t(trim_to_)); }, false);
+    trim_to_ = -1;
+  }
+
+  void run_step_phase(Phase p, float dt) {
+    timed(p, [&] {
+      switch (p) {
+        case Phase::Predict: launch(n(), PredictFn{constants(), d_.view(), dt}); return;
+        case Phase::BuildGrid: build_grid(); return;
+        case Phase::Density: density(dt); return;
+        case Phase::Pressure: pressure(); return;
+        case Phase::Forces: forces(); return;
+        case Phase::Correct: launch(n(), CorrectFn{constants(), d_.view(), dt}); return;
+        case Phase::Boundaries:
+          if (c_.num_shapes > 0) launch(n(), BoundariesFn{constants(), d_.view(), dt});
+          return;
+        case Phase::Recycle: recycle(); return;
+        case Phase::Emit:
+        case Phase::Count: return;  // not phases of a step
+      }
+    });
+  }
+
+  // After enqueued work that moved the particles: on cuda the summary (diagnostics and, after recycling,
+  // the kept count) and its one copy to the host; on host the diagnostics are simply out of date.
+  void end_of_work() {
+#if defined(__CUDACC__)
+    run_phase(name_, "diagnostics", [&] { enqueue_summary(recycled_ ? &summary()->kept : nullptr); }, false);
+#else
+    diag_current_ = false;
+#endif
   }
 
   // Sort by (cell key, id) and build the block tables (device_grid.h), moving every array into that order.
@@ -281,13 +421,26 @@ class DeviceBackend final : public Backend {
   void pressure() { launch(n(), PressureFn{constants(), d_.view()}); }
   void forces() { launch(n(), ForcesFn{constants(), grid_view(), d_.view()}); }
 
-  // Keeps the particles that have not expired, in order (a stable compaction: deterministic).
+  // Keeps the particles that have not expired, in order (a stable compaction: deterministic). Skipped when
+  // none can expire. On cuda the kept count stays on the device: every particle slot is gathered (the
+  // threads past the count do nothing) and settle() drops the rest when the step's summary is read.
   void recycle() {
     const int32_t count = n();
-    if (count == 0) return;
+    if (count == 0 || !can_expire_) return;
     keep_.resize(std::size_t(count));
     keep_flag_.resize(std::size_t(count));
     launch(count, KeepFn{constants(), d_.view(), thrust::raw_pointer_cast(keep_flag_.data())});
+#if defined(__CUDACC__)
+    int32_t* kept = &summary()->kept;
+    cub_temporaries(temporary_, [&](void* t, std::size_t& bytes) {
+      return cub::DeviceSelect::Flagged(t, bytes, thrust::counting_iterator<int32_t>(0), keep_flag_.data().get(),
+                                        keep_.data().get(), kept, count, kStream);
+    });
+    sorted_.resize(std::size_t(count));
+    launch(count, GatherFn{d_.view(), sorted_.view(), thrust::raw_pointer_cast(keep_.data()), kept});
+    std::swap(d_, sorted_);
+    recycled_ = true;
+#else
     const auto end = thrust::copy_if(with_temporaries(temporary_), thrust::counting_iterator<int32_t>(0),
                                      thrust::counting_iterator<int32_t>(count), keep_flag_.begin(), keep_.begin(), IsSetFn{});
     const std::ptrdiff_t kept = end - keep_.begin();
@@ -295,9 +448,11 @@ class DeviceBackend final : public Backend {
     keep_.resize(std::size_t(kept));
     sorted_.gather_from(d_, keep_);
     std::swap(d_, sorted_);
+#endif
   }
 
   SimConstants c_;
+  bool can_expire_;  // particles_can_expire(c_)
   ConstantsOwner constants_;
   std::string name_;
   DeviceArrays d_, sorted_;
@@ -306,7 +461,20 @@ class DeviceBackend final : public Backend {
   DeviceVector<int32_t> keep_;
   DeviceVector<uint8_t> keep_flag_;
   ParticleState host_;
-  PhaseTimes times_;
+
+  // The step's end: the summary on the device and its copy on the host. Mutable: size() and phase_times()
+  // are const but may have to wait for the step that was enqueued last.
+  DeviceVector<StepSummary> summary_;
+  PinnedReadback<StepSummary> readback_;
+  mutable StepSummary result_{Diag::none(), 0};  // the summary read last
+  mutable bool pending_ = false;                 // a summary is enqueued and not read yet
+  mutable bool recycled_ = false;                // the pending step recycled: its count is in the summary
+  mutable int64_t trim_to_ = -1;                 // particles to keep once settled, -1: all
+  const char* last_phase_ = "";                  // the last phase enqueued, for the fault message
+  bool diag_current_ = false;                    // result_.diag is of the particles now, with spawn_diag_
+  Diag spawn_diag_ = Diag::none();               // of the particles emitted since the summary was taken
+  mutable PhaseClock clock_;
+  mutable PhaseTimes times_;
 #if defined(SPH_DEVICE_GL_INTEROP)
   GlInterop gl_;  // registered OpenGL buffers, unregistered by its destructor
 #endif

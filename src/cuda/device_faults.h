@@ -2,10 +2,13 @@
 // inside a kernel, a CUDA call that fails, device memory running out) becomes an ordinary
 // std::runtime_error that names the back end, the phase and the CUDA error, which sph_run and sph_demo
 // report with exit status 1. Teardown after such an error is safe (device_arrays.h frees quietly).
+// The step is asynchronous (issue 11, item 6), so a fault inside a kernel is named by the phase only with
+// SPH_DEVICE_SYNC=1; otherwise it is "phase step (fault detected after ...)" at the step's end.
 // On the host build errors are ordinary C++ exceptions already, and these checks cost nothing.
 #pragma once
 
 #include <cstddef>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +16,7 @@
 #include <cuda_runtime.h>
 #endif
 
+#include "device_launch.h"
 #include "device_memory.h"
 
 namespace sph {
@@ -29,19 +33,39 @@ inline void check_device(bool wait) {
     throw std::runtime_error(std::string(cudaGetErrorName(status)) + ": " + cudaGetErrorString(status));
 }
 
+// Whether every phase waits for the device (SPH_DEVICE_SYNC=1 in the environment, read once): a debugging
+// mode that names the exact phase a kernel faults in, at the cost of one synchronisation per phase.
+inline bool sync_each_phase() {
+  static const bool on = [] {
+    const char* v = std::getenv("SPH_DEVICE_SYNC");
+    return v != nullptr && std::string(v) == "1";
+  }();
+  return on;
+}
+
 // Runs f, one phase of a step (or another piece of work: "upload", "download"); any error it throws or
-// leaves on the device comes out as std::runtime_error naming the back end and the phase. It waits for
-// the device at the end of each phase, so a fault is named by its phase and the phase timers (host
-// clocks) measure the work, not its launch; an asynchronous step would time phases with CUDA events
-// and check once per step instead (issue 11, Build item 2).
+// leaves on the device comes out as std::runtime_error naming the back end and the phase. A failed launch
+// is seen at once (cudaGetLastError, no waiting). A fault inside a kernel shows only when the host waits
+// for the device: with `wait` at the end of this phase, otherwise at the step's one synchronisation
+// (wait_for_step below), which names the step instead; sync_each_phase() makes every phase wait.
 template <class F>
-void run_phase(const std::string& backend, const char* phase, F&& f) {
+void run_phase(const std::string& backend, const char* phase, F&& f, bool wait = true) {
   try {
     f();
-    check_device(true);
+    check_device(wait || sync_each_phase());
   } catch (const std::exception& e) {
     throw std::runtime_error("back end \"" + backend + "\", phase \"" + phase + "\": " + e.what());
   }
+}
+
+// The step's one synchronisation: waits for everything enqueued on the stream. A fault inside any of the
+// step's kernels is reported here, as phase "step" with the last phase enqueued before it.
+inline void wait_for_step(const std::string& backend, const char* last_phase) {
+  const cudaError_t status = cudaStreamSynchronize(kStream);
+  if (status != cudaSuccess)
+    throw std::runtime_error("back end \"" + backend + "\", phase \"step\" (fault detected after \"" + last_phase +
+                             "\"; SPH_DEVICE_SYNC=1 names the phase it happened in): " + cudaGetErrorName(status) +
+                             ": " + cudaGetErrorString(status));
 }
 
 // Refuses, before anything is allocated, a particle count whose arrays cannot fit in the GPU's free memory
@@ -61,9 +85,10 @@ inline void check_device_memory(std::size_t particles, std::size_t bytes_per_par
 #else
 
 template <class F>
-void run_phase(const std::string&, const char*, F&& f) {
+void run_phase(const std::string&, const char*, F&& f, bool = true) {
   f();
 }
+inline void wait_for_step(const std::string&, const char*) {}
 inline void check_device(bool) {}
 inline void check_device_memory(std::size_t, std::size_t, std::size_t, std::size_t) {}
 
