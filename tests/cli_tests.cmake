@@ -247,3 +247,14 @@ add_test(NAME cli_metrics_every_keeps_final_row
                  ${SPH_RUN} ${SPH_CLI_OUT}/metrics_every_final ${SPH_CLI_SCENES}/dam_break.json
          WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(cli_metrics_every_keeps_final_row PROPERTIES TIMEOUT 120 LABELS cli)
+
+# Particles that leave the domain are still simulated (the grid covers any position), and counted: in
+# metrics.csv, the summary and a warning. The cube starts inside and falls 7 cm through the bottom.
+sph_cli_test(leaves_domain
+  --clean ${SPH_CLI_OUT}/leaves_domain --exit 0
+  --stdout-line "particles_outside_domain: 1000 (most in a metrics row: 1000)" --stderr "1000 particles left the domain"
+  --csv-column ${SPH_CLI_OUT}/leaves_domain/metrics.csv outside_domain
+  -- ${SPH_RUN} ${SPH_CLI_DATA}/leaves_domain.json -q --out ${SPH_CLI_OUT}/leaves_domain)
+sph_cli_test(stays_in_domain
+  --clean ${SPH_CLI_OUT}/stays_in_domain --exit 0 --stdout-line "particles_outside_domain: 0 (most in a metrics row: 0)"
+  -- ${SPH_RUN} ${SPH_CLI_DATA}/leaves_domain.json -q --time 0.02 --out ${SPH_CLI_OUT}/stays_in_domain)

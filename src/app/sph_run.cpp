@@ -70,15 +70,17 @@ const char* limit_name(StepLimit l) {
 
 const char* const kMetricsHeader =
     "time,dt,step,kinetic_energy,potential_energy,energy_budget,density_error_mean,density_error_max,v_max,front_x,"
-    "top_y,height_at_x0,particles,wall_ms";
+    "top_y,height_at_x0,particles,outside_domain,wall_ms";
 
-void write_metrics_row(MetricsFile& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
+// Writes one row; returns the particles outside the domain (the summary reports the most of any row).
+long write_metrics_row(MetricsFile& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
   std::ostringstream row;
   row.precision(9);
   row << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ',' << m.potential_energy
       << ',' << sim.energy_budget() << ',' << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ',' << m.front_x << ',' << m.top_y
-      << ',' << m.height_at_x0 << ',' << m.particles << ',' << wall_ms;
+      << ',' << m.height_at_x0 << ',' << m.particles << ',' << m.outside_domain << ',' << wall_ms;
   csv.write_row(row.str());
+  return m.outside_domain;
 }
 
 // --restart: the frame to continue from (nullptr without the option), read and checked before the
@@ -138,7 +140,8 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
 
 // The summary: figures of the whole run. ms_per_step is the median wall time of one step (benchmarks
 // parse it); the means are named as such.
-void print_summary(Simulation& sim, const Metrics& m, const std::vector<double>& step_ms, double wall) {
+void print_summary(Simulation& sim, const Metrics& m, const std::vector<double>& step_ms, double wall,
+                   long most_outside) {
   const double med = median(step_ms);
   std::cout << "simulated_time: " << sim.time() << "\n"
             << "particles: " << sim.backend().size() << "\n"
@@ -150,7 +153,8 @@ void print_summary(Simulation& sim, const Metrics& m, const std::vector<double>&
             << "kinetic_energy: " << m.kinetic_energy << "\n"
             << "density_error_mean: " << m.density_error_mean << "\n"
             << "density_error_max: " << m.density_error_max << "\n"
-            << "front_x: " << m.front_x << "\n";
+            << "front_x: " << m.front_x << "\n"
+            << "particles_outside_domain: " << m.outside_domain << " (most in a metrics row: " << most_outside << ")\n";
   const PhaseTimes& pt = sim.backend().phase_times();
   if (pt.steps > 0) {
     std::cout << "phase_ms_per_step_mean:";
@@ -217,6 +221,7 @@ int run(const Options& o) {
   install_stop_handlers();
   const bool tty = isatty(STDERR_FILENO) && !o.quiet;
   std::vector<double> step_ms;
+  long most_outside = 0;  // particles outside the domain, the most of any metrics row
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   int status = kDone;
@@ -229,7 +234,8 @@ int run(const Options& o) {
     }
     long last_row_step = sim.steps();  // the last step metrics.csv has a row for
     double last_ms = 0.0;
-    if (!csv.continued()) write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), 0.0);
+    if (!csv.continued())
+      most_outside = write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), 0.0);
     next_metrics = o.metrics_every;
     while (!stop_requested() && (by_steps ? sim.steps() < o.steps : sim.time() < run_time - 1e-12)) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -246,7 +252,8 @@ int run(const Options& o) {
       step_ms.push_back(ms);
       last_ms = ms;
       if (sim.time() >= next_metrics - 1e-12) {
-        write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), ms);
+        most_outside = std::max(
+            most_outside, write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), ms));
         next_metrics = sim.time() + o.metrics_every;
         last_row_step = sim.steps();
       }
@@ -267,7 +274,8 @@ int run(const Options& o) {
     }
     // The final state always has its row, whatever --metrics-every skipped (and a blown-up one shows how).
     if (sim.steps() != last_row_step)
-      write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), last_ms);
+      most_outside = std::max(
+          most_outside, write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), last_ms));
     csv.close();
   } catch (const OutputError& e) {
     output_error = e.what();
@@ -283,7 +291,11 @@ int run(const Options& o) {
               << "); the output written so far is complete\n";
     status = 128 + sig;
   }
-  print_summary(sim, m, step_ms, wall);
+  most_outside = std::max(most_outside, m.outside_domain);
+  print_summary(sim, m, step_ms, wall, most_outside);
+  if (most_outside > 0)
+    std::cerr << "warning: " << most_outside << " particles left the domain (the container or \"domain\" with a band of 2 h); "
+              << "they are still simulated, but the domain does not enclose the fluid: check the boundaries\n";
   std::cout << "metrics: " << csv.path() << (frame > first_frame ? ", frames: " + std::to_string(frame - first_frame) : std::string()) << "\n";
   std::cout.flush();
 
@@ -322,7 +334,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "sph_run: run an SPH scene headless and record what happens.\n\n"
       "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, potential_energy, energy_budget, density_error_mean,\n"
-      "density_error_max, v_max, front_x, top_y, height_at_x0, particles, wall_ms; flushed at least once per\n"
+      "density_error_max, v_max, front_x, top_y, height_at_x0, particles, outside_domain, wall_ms; flushed at least once per\n"
       "second) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends with a\n"
       "summary: particles, steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by phase).\n"
       "SIGINT or SIGTERM stops the run after the current step; the output is flushed and the summary printed.\n"

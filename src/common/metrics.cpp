@@ -52,7 +52,12 @@ Metrics measure(const SimConstants& c, const ParticleState& ps, double potential
   xs.reserve(ps.size());
   ys.reserve(ps.size());
   long fluid = 0;
+  const GridGeometry& g = c.grid;
+  const Vec3 lo = g.origin, hi = g.origin + g.cell_size * Vec3{float(g.nx), float(g.ny), float(g.nz)};
   for (std::size_t i = 0; i < ps.size(); ++i) {
+    const Vec3 x = ps.pos[i];
+    const bool inside = x.x >= lo.x && x.y >= lo.y && x.z >= lo.z && x.x <= hi.x && x.y <= hi.y && x.z <= hi.z;
+    if (!inside) ++m.outside_domain;  // NaN included
     if (ps.age[i] < 0.0f) continue;  // still in a jet's inlet
     const FluidConstants& f = c.fluids[ps.fluid[i]];
     const Vec3 v = ps.vel[i];

@@ -19,6 +19,7 @@ struct Metrics {
   double height_at_x0 = 0.0;  // largest y of the fluid within h of the plane x = 0 (dam break column), same rule
   double momentum[3] = {0.0, 0.0, 0.0};
   long particles = 0;
+  long outside_domain = 0;  // particles (inlet ones included) outside the domain of c.grid, or not finite
 };
 
 // Fluid particles only (a jet's inlet particles, age < 0, are moved kinematically and left out).
