@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
   int dam_cuda_only = 127;                 // about 4M particles, on cuda only
   bool quick = false;
   CLI::App app{"sph_bench: ms per step and particle-steps per second of fixed workloads on every back end.\n"
-               "Workloads: the thesis's performance cube (16^3 and 32^3 particles, thesis 5.2 parameters) and the\n"
+               "Workloads: the thesis's performance cube (16^3 and 32^3 particles, thesis 5.2 parameters), a cube of\n"
+               "8,000 particles in a 0.2 m and a 50 m tank (the grid's cost against the domain's size) and the\n"
                "dam break at several resolutions. Writes OUT/bench.csv and OUT/bench.json naming the hardware."};
   app.add_option("--backends", backends, "back ends to measure (default: every usable one)");
   app.add_option("--out,-o", out, "output directory")->capture_default_str();
@@ -166,6 +167,15 @@ int main(int argc, char** argv) {
   if (dam_cuda_only > 0)
     workloads.push_back({"dam_break_" + std::to_string(dam_cuda_only), "dam_break.json",
                          {"resolution.particles_across=" + std::to_string(dam_cuda_only)}, 0.0, 0.0, true});
+  // The same 0.1 m cube of 8,000 particles in a 0.2 m and a 50 m tank: the grid's cost must follow the
+  // particles, not the domain (issue 11, item 7: at most 1.5 times).
+  if (!quick)
+    for (const char* side : {"0.2", "50"})
+      workloads.push_back({std::string("cube_tank_") + side + "m", "dam_break.json",
+                           {"emitters.0.min=[0.05,0,0.05]", "emitters.0.max=[0.15,0.1,0.15]",
+                            std::string("boundaries.0.max=[") + side + "," + side + "," + side + "]",
+                            "resolution.particles_across=20"},
+                           0.0, 0.0, false});
 
   // Every argument is checked before the first workload runs.
   if (!only.empty()) {

@@ -76,11 +76,10 @@ struct ParticleState {
 
 // Bytes of memory one particle needs at peak, used to refuse particle counts that cannot fit before
 // allocating anything. The fields above take 97 bytes; the state, its reorder copy, the downloaded copy,
-// the grid's index arrays and the vectors' growth make about six times that. Measured peak resident size
-// per particle of scenes/dam_break.json (/usr/bin/time -v, 5 steps), before pos_start was added (85 bytes of
-// fields): 468 bytes on cpu and 559 on host between 16,000 and 128,000 particles, 443 and 531 (peak /
-// particles) at 432,000; six times the fields was within 15%.
+// the grid (sort records, keys, block tables) and the CPU builds' neighbour lists (64 slots) make about
+// seven times that. Measured peak resident size of scenes/dam_break.json (/usr/bin/time -v, 5 steps) at
+// 128,000 particles: 624 bytes per particle on cpu, 718 on host (599 and 684 per added particle from 16k).
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
-constexpr std::size_t kBytesPerParticle = 6 * kParticleFieldBytes;
+constexpr std::size_t kBytesPerParticle = 7 * kParticleFieldBytes;
 
 }  // namespace sph
