@@ -339,7 +339,10 @@ class DeviceBackend final : public Backend {
   }
 
   void density(float dt) { launch(n(), DensityFn{constants(), grid_view(), d_.view(), dt}); }
-  void pressure() { launch(n(), PressureFn{constants(), d_.view()}); }
+  void pressure() {
+    d_.fit_derived();  // the reorder and the compaction carry only the fields the pressure phase reads
+    launch(n(), PressureFn{constants(), d_.view()});
+  }
   void forces() { launch(n(), ForcesFn{constants(), grid_view(), d_.view()}); }
 
   // Keeps the particles that have not expired, in order (a stable compaction: deterministic).
