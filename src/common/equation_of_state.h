@@ -23,6 +23,10 @@ SPH_HD inline float ideal_pressure(float rho, float rho0, float c0) { return c0 
 // always repulsive, so particles cannot pull their neighbours into clusters.
 SPH_HD inline float near_pressure(float rho_near, float k_near) { return k_near * rho_near; }
 
+// A pressure over rho^2 from 1 / rho, as the symmetric pressure term (thesis eq. 2.18) takes it. Computed once
+// per particle by the pressure phase (pressure.h), and per ghost by the forces, with its own pressure.
+SPH_HD inline float over_rho2(float pressure, float inv_rho) { return pressure * inv_rho * inv_rho; }
+
 SPH_HD inline float equation_of_state(const SimConstants& c, const FluidConstants& f, float rho) {
   float p = c.eos == EquationOfState::Tait ? tait_pressure(rho, f.rest_density, f.tait_b)
                                            : ideal_pressure(rho, f.rest_density, f.speed_of_sound);

@@ -102,22 +102,23 @@ SPH_HD inline int32_t cell_index(const GridGeometry& g, Vec3 p) {
 template <class F>
 SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&& f) {
   constexpr int32_t kSide = 2 * kGridReach + 1;
-  const int32_t local = int32_t(grid.key[a] & kLocalMask);
-  const int32_t block_a = grid.particle_block[a];
 #if defined(__CUDA_ARCH__)
   // One counter over (row, part): part 0 and 1 are the row's cells in the left and right block of the two
-  // it may touch along x; a part with no cells is skipped.
+  // it may touch along x; a part with no cells is skipped. The particle's block and cell are read again in
+  // each turn (from L1) rather than held: forces must fit in 80 registers without spilling.
 #pragma unroll 1
   for (int32_t s = 0; s < 2 * kSide * kSide; ++s) {
-    const int32_t lx = local & (kBlockX - 1);
+    const int32_t lx = int32_t(__ldg(grid.key + a) & uint64_t(kBlockX - 1));
     const int32_t bx = (lx < kGridReach ? -1 : 0) + (s & 1);
     if (bx > (lx + kGridReach >= kBlockX ? 1 : 0)) continue;
+    const int32_t here = int32_t(__ldg(grid.key + a) & kLocalMask);
     const int32_t r = s >> 1;
-    const int32_t z = (local >> (kBlockXBits + kBlockYBits)) + r / kSide - kGridReach;
-    const int32_t y = ((local >> kBlockXBits) & (kBlockY - 1)) + r % kSide - kGridReach;
+    const int32_t z = (here >> (kBlockXBits + kBlockYBits)) + r / kSide - kGridReach;
+    const int32_t y = ((here >> kBlockXBits) & (kBlockY - 1)) + r % kSide - kGridReach;
     const int32_t bz = z < 0 ? -1 : (z >= kBlockZ ? 1 : 0);
     const int32_t by = y < 0 ? -1 : (y >= kBlockY ? 1 : 0);
-    const int32_t block = grid.block_neighbours[int64_t(block_a) * kBlockNeighbours + (bz + 1) * 9 + (by + 1) * 3 + (bx + 1)];
+    const int32_t block = grid.block_neighbours[int64_t(__ldg(grid.particle_block + a)) * kBlockNeighbours +
+                                                (bz + 1) * 9 + (by + 1) * 3 + (bx + 1)];
     if (block < 0) continue;
     const int32_t from = lx - kGridReach - kBlockX * bx > 0 ? lx - kGridReach - kBlockX * bx : 0;
     const int32_t to = lx + kGridReach - kBlockX * bx < kBlockX - 1 ? lx + kGridReach - kBlockX * bx : kBlockX - 1;
@@ -128,6 +129,8 @@ SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&&
 #else
   // The same ranges in the same order, with everything that does not change along the loops hoisted (on a
   // CPU the range arithmetic was a good part of the search's cost).
+  const int32_t local = int32_t(grid.key[a] & kLocalMask);
+  const int32_t block_a = grid.particle_block[a];
   const int32_t lx = local & (kBlockX - 1), ly = (local >> kBlockXBits) & (kBlockY - 1),
                 lz = local >> (kBlockXBits + kBlockYBits);
   int32_t parts = 0, part_bx[2], part_from[2], part_to[2];

@@ -28,9 +28,15 @@ struct Spawn {
   X(float, near_density) X(float, pressure) X(float, near_pressure) X(float, age) X(uint8_t, fluid) \
   X(int32_t, id) X(Vec3, pos_start)
 
+// Per-particle values derived from the fields above, so that the forces' pair loop has no division (issue 11,
+// item 4): written by the pressure phase of every step (pressure.h) before the forces read them. They are
+// scratch: never copied, reordered, downloaded or written to frames; a restart recomputes them.
+#define SPH_DERIVED_FIELDS(X) X(float, inv_density) X(float, pressure_rho2) X(float, near_pressure_rho2)
+
 struct ParticleState {
 #define SPH_DECLARE_FIELD(type, name) std::vector<type> name;
   SPH_PARTICLE_FIELDS(SPH_DECLARE_FIELD)
+  SPH_DERIVED_FIELDS(SPH_DECLARE_FIELD)
 #undef SPH_DECLARE_FIELD
 
   std::size_t size() const { return pos.size(); }
@@ -38,6 +44,7 @@ struct ParticleState {
   void resize(std::size_t n) {
 #define SPH_RESIZE_FIELD(type, name) name.resize(n);
     SPH_PARTICLE_FIELDS(SPH_RESIZE_FIELD)
+    SPH_DERIVED_FIELDS(SPH_RESIZE_FIELD)
 #undef SPH_RESIZE_FIELD
   }
 
@@ -59,7 +66,8 @@ struct ParticleState {
     pos_start[i] = s.pos;
   }
 
-  // Copies particle `from` of `src` into slot `to` of this state (used by reordering and removal).
+  // Copies particle `from` of `src` into slot `to` of this state (used by reordering and removal); the
+  // derived fields are not copied (recomputed before use).
   void copy_particle(std::size_t to, const ParticleState& src, std::size_t from) {
 #define SPH_COPY_FIELD(type, name) name[to] = src.name[from];
     SPH_PARTICLE_FIELDS(SPH_COPY_FIELD)
@@ -70,16 +78,19 @@ struct ParticleState {
     return ParticleView{int32_t(size()), pos.data(),          vel.data(),      vel_force.data(),
                         acc.data(),      xsph_dv.data(),      density.data(),  near_density.data(),
                         pressure.data(), near_pressure.data(), age.data(),     fluid.data(),
-                        id.data(),       pos_start.data()};
+                        id.data(),       pos_start.data(),     inv_density.data(), pressure_rho2.data(),
+                        near_pressure_rho2.data()};
   }
 };
 
 // Bytes of memory one particle needs at peak, used to refuse particle counts that cannot fit before
-// allocating anything. The fields above take 97 bytes; the state, its reorder copy, the downloaded copy,
-// the grid (sort records, keys, block tables) and the CPU builds' neighbour lists (64 slots) make about
-// seven times that. Measured peak resident size of scenes/dam_break.json (/usr/bin/time -v, 5 steps) at
-// 128,000 particles: 624 bytes per particle on cpu, 718 on host (599 and 684 per added particle from 16k).
+// allocating anything. The fields above take 97 bytes and the derived ones 12; the state, its reorder copy,
+// the downloaded copy, the grid (sort records, keys, block tables) and the CPU builds' neighbour lists (64
+// slots) make about seven times the 97. Measured peak resident size of scenes/dam_break.json (/usr/bin/time
+// -v, 5 steps) at 128,000 particles: 624 bytes per particle on cpu, 718 on host (599 and 684 per added
+// particle from 16k), before the 12 bytes of derived fields were added.
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
-constexpr std::size_t kBytesPerParticle = 7 * kParticleFieldBytes;
+constexpr std::size_t kDerivedFieldBytes = 3 * sizeof(float);
+constexpr std::size_t kBytesPerParticle = 7 * kParticleFieldBytes + kDerivedFieldBytes;
 
 }  // namespace sph

@@ -25,6 +25,10 @@ struct ParticleView {
   uint8_t* fluid;       // index into SimConstants::fluids
   int32_t* id;          // stable particle identity, survives reordering
   Vec3* pos_start;      // position at the start of the step: boundaries test the segment moved (boundaries.h)
+  // Derived by the pressure phase for the forces (SPH_DERIVED_FIELDS in particle_state.h):
+  float* inv_density;         // 1 / rho [m^3/kg]
+  float* pressure_rho2;       // P / rho^2 [m^5/(kg s^2)]
+  float* near_pressure_rho2;  // P_near / rho^2, 0 without near pressure
 };
 
 // The neighbour grid of the current particle order (grid.h, grid_build.h); arrays owned by the back end.

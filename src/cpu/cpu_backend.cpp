@@ -133,7 +133,9 @@ void CpuBackend::pressure() {
 void CpuBackend::forces() {
   const ParticleView p = s_.view();
   const GridView g = grid_view();
-  for (int32_t i = 0; i < p.n; ++i) forces_of(c_, g, p, i);
+  with_force_model(c_, [&](auto model) {
+    for (int32_t i = 0; i < p.n; ++i) forces_with<decltype(model)>(c_, g, p, i);
+  });
 }
 
 void CpuBackend::correct(float dt) {

@@ -109,15 +109,25 @@ struct GatherFn {
 struct DeviceArrays {
 #define SPH_DECLARE_DEVICE_FIELD(type, name) DeviceVector<type> name;
   SPH_PARTICLE_FIELDS(SPH_DECLARE_DEVICE_FIELD)
+  SPH_DERIVED_FIELDS(SPH_DECLARE_DEVICE_FIELD)
 #undef SPH_DECLARE_DEVICE_FIELD
 
   std::size_t size() const { return pos.size(); }
 
-  // Bytes of device memory per particle: the fields, in this and in the reordering copy.
-  static constexpr std::size_t kBytesPerParticle = 2 * kParticleFieldBytes;
+  // Bytes of device memory per particle: the fields, in this and in the reordering copy, and the derived
+  // fields once.
+  static constexpr std::size_t kBytesPerParticle = 2 * kParticleFieldBytes + kDerivedFieldBytes;
 
-  // Calls f(device_field, other_field) for every field of the list in particle_state.h, where other is a
-  // host ParticleState or another DeviceArrays.
+  // Sizes the derived fields (SPH_DERIVED_FIELDS) to the particle count; their values are left to the
+  // pressure phase, which writes them before every use.
+  void fit_derived() {
+#define SPH_FIT_DERIVED_FIELD(type, name) name.resize(size());
+    SPH_DERIVED_FIELDS(SPH_FIT_DERIVED_FIELD)
+#undef SPH_FIT_DERIVED_FIELD
+  }
+
+  // Calls f(device_field, other_field) for every field of the list in particle_state.h (not the derived
+  // ones), where other is a host ParticleState or another DeviceArrays.
   template <class Other, class F>
   void each(Other& other, F&& f) {
 #define SPH_EACH_FIELD(type, name) f(name, other.name);
@@ -166,7 +176,10 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(age.data()),
                         thrust::raw_pointer_cast(fluid.data()),
                         thrust::raw_pointer_cast(id.data()),
-                        thrust::raw_pointer_cast(pos_start.data())};
+                        thrust::raw_pointer_cast(pos_start.data()),
+                        thrust::raw_pointer_cast(inv_density.data()),
+                        thrust::raw_pointer_cast(pressure_rho2.data()),
+                        thrust::raw_pointer_cast(near_pressure_rho2.data())};
   }
 };
 

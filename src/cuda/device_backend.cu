@@ -77,12 +77,13 @@ struct PressureFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { pressure_of(*c, p, i); }
 };
 
+template <class Model>  // a ForceModel (forces.h)
 struct ForcesFn {
   static constexpr int kBlocksPerSm = 3;
   ConstantsRef c;
   GridView g;
   ParticleView p;
-  SPH_KERNEL_FN void operator()(int32_t i) const { forces_of(*c, g, p, i); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { forces_with<Model>(*c, g, p, i); }
 };
 
 struct CorrectFn {
@@ -418,8 +419,13 @@ class DeviceBackend final : public Backend {
     else
       launch(n(), DensityFn<false>{constants(), grid_view(), d_.view(), dt});
   }
-  void pressure() { launch(n(), PressureFn{constants(), d_.view()}); }
-  void forces() { launch(n(), ForcesFn{constants(), grid_view(), d_.view()}); }
+  void pressure() {
+    d_.fit_derived();  // the reorder and the compaction carry only the fields the pressure phase reads
+    launch(n(), PressureFn{constants(), d_.view()});
+  }
+  void forces() {
+    with_force_model(c_, [&](auto model) { launch(n(), ForcesFn<decltype(model)>{constants(), grid_view(), d_.view()}); });
+  }
 
   // Keeps the particles that have not expired, in order (a stable compaction: deterministic). Skipped when
   // none can expire. On cuda the kept count stays on the device: every particle slot is gathered (the
