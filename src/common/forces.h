@@ -95,15 +95,14 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
       break;
   }
   if (c.artificial_enabled) {  // thesis eq. 2.20-2.22 (beta = 0), approaching pairs only
-    const float vx = dot(vab, xab);
-    if (vx < 0.0f) {
-      // Pi_ab = -alpha cbar mu_ab / rho_ab, mu_ab = h v_ab.x_ab / (r^2 + eps^2), rho_ab = (rho_a + rho_b) / 2:
-      // both quotients in one division.
-      const float alpha = 0.5f * (fa.artificial_alpha + fb.artificial_alpha);
-      const float cbar = 0.5f * (fa.speed_of_sound + fb.speed_of_sound);
-      const float pi_ab = -alpha * cbar * k.h * vx / ((r2 + eps2) * (0.5f * (a.rho + b.rho)));
-      s -= mb * pi_ab * grad;
-    }
+    // Pi_ab = -alpha cbar mu_ab / rho_ab, mu_ab = h v_ab.x_ab / (r^2 + eps^2), rho_ab = (rho_a + rho_b) / 2:
+    // both quotients in one division. Receding pairs (v_ab.x_ab >= 0) get mu_ab = 0, without a branch:
+    // whether a pair approaches is a coin toss in a splashing fluid, which a CPU mispredicts.
+    const float vx = fminf(dot(vab, xab), 0.0f);
+    const float alpha = 0.5f * (fa.artificial_alpha + fb.artificial_alpha);
+    const float cbar = 0.5f * (fa.speed_of_sound + fb.speed_of_sound);
+    const float pi_ab = -alpha * cbar * k.h * vx / ((r2 + eps2) * (0.5f * (a.rho + b.rho)));
+    s -= mb * pi_ab * grad;
   }
   acc += s * xab;
 }
