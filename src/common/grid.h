@@ -168,46 +168,22 @@ SPH_HD inline void for_each_candidate(const GridView& grid, int32_t a, F&& f) {
   });
 }
 
-// Neighbours listed per particle on the CPU builds (grid.neighbour_list): a list is complete when the
-// particle has fewer neighbours than this (typical counts are 25 to 40); otherwise the loops search.
+// Neighbours listed per particle on the CPU builds (grid.neighbour_list, neighbour_list.h): a list is
+// complete when the particle has fewer neighbours than this (typical counts are 25 to 40); otherwise the
+// loops search. Each list has 4 more slots than that, which the vectorised filter may write past the end.
 constexpr int32_t kNeighbourListCapacity = 64;
-
-// The particles b within h of particle a (|x_a - x_b|^2 < h2, a itself included), in for_each_candidate's
-// order: returns how many there are, and lists them all in list[0, capacity) when there are fewer than
-// `capacity` (otherwise the list is incomplete and must not be used). Two ways to the same list:
-// kBranchFree filters the candidates without a branch, which pays once the fluid is disordered and "is b
-// a neighbour?" is a coin toss for the CPU's branch predictor (mispredictions doubled the cost of a step
-// over a dam break: issue 11, item 9); a branch is faster while the particles still sit on a lattice,
-// where the predictor learns the pattern. The back end times both (neighbour_list_choice.h).
-template <bool kBranchFree>
-SPH_HD inline int32_t list_neighbours(const GridView& grid, const Vec3* pos, int32_t a, float h2, int32_t* list,
-                                      int32_t capacity) {
-  const Vec3 xa = pos[a];
-  int32_t m = 0;
-  for_each_candidate_range(grid, a, [&](int32_t begin, int32_t end) {
-    for (int32_t b = begin; b < end; ++b) {
-      if (kBranchFree) {
-        list[m < capacity ? m : capacity - 1] = b;  // past the capacity the last slot is scratch
-        m += length2(xa - pos[b]) < h2 ? 1 : 0;
-      } else if (length2(xa - pos[b]) < h2) {
-        if (m < capacity) list[m] = b;
-        ++m;
-      }
-    }
-  });
-  return m;
-}
+constexpr int32_t kNeighbourListStride = kNeighbourListCapacity + 4;
 
 // Calls f(b, xab, r2) for every particle b with r2 = |x_a - x_b|^2 < h2 (a itself included), xab = x_a - x_b,
 // in for_each_candidate's order on every back end, so every sum has the same bits. The CPU builds read
-// the list made with the grid (list_neighbours) when it holds them all: the search and its branch
+// the list made with the grid (neighbour_list.h) when it holds them all: the search and its branch
 // mispredictions are then paid once per step instead of once per loop. A GPU tests each candidate.
 template <class F>
 SPH_HD inline void for_each_neighbour(const GridView& grid, const Vec3* pos, int32_t a, float h2, F&& f) {
   const Vec3 xa = pos[a];
 #if !defined(__CUDA_ARCH__)
   if (grid.neighbour_list != nullptr && grid.neighbour_count[a] < kNeighbourListCapacity) {
-    const int32_t* list = grid.neighbour_list + int64_t(a) * kNeighbourListCapacity;
+    const int32_t* list = grid.neighbour_list + int64_t(a) * kNeighbourListStride;
     for (int32_t t = 0, m = grid.neighbour_count[a]; t < m; ++t) {
       const Vec3 xab = xa - pos[list[t]];
       f(list[t], xab, length2(xab));

@@ -1,4 +1,4 @@
-// Which of list_neighbours' two ways (grid.h) a CPU back end uses for the next step. Both give the same
+// Which of list_neighbours' two ways (neighbour_list.h) a CPU back end uses for the next step. Both give the same
 // list, so the choice changes speed only, never a bit of the results: the back end times the way it
 // uses, and every kProbeEvery steps tries the other for one step; it keeps whichever took less time per
 // particle (an exponential average of each). A lattice at rest favours the branch, a splashing fluid the

@@ -10,6 +10,7 @@
 #include <thrust/sort.h>
 
 #include "../common/grid_build.h"
+#include "../common/neighbour_list.h"
 #include "../common/neighbour_list_choice.h"
 #include "device_arrays.h"
 #include "device_launch.h"
@@ -88,8 +89,7 @@ struct NeighbourListFn {
   int32_t* list;
   int32_t* count;
   SPH_HD void operator()(int32_t a) const {
-    count[a] = list_neighbours<kBranchFree>(g, pos, a, h2, list + int64_t(a) * kNeighbourListCapacity,
-                                            kNeighbourListCapacity);
+    count[a] = list_neighbours<kBranchFree>(g, pos, a, h2, list + int64_t(a) * kNeighbourListStride);
   }
 };
 
@@ -127,7 +127,7 @@ class DeviceGrid {
     launch(blocks_, BlockTablesFn{raw(key_), raw(block_begin_), raw(block_code_), blocks_, raw(cell_start_),
                                   raw(block_neighbours_)});
 #if !defined(__CUDACC__)
-    neighbour_list_.resize(std::size_t(n) * kNeighbourListCapacity);
+    neighbour_list_.resize(std::size_t(n) * kNeighbourListStride);
     neighbour_count_.resize(std::size_t(n));
     GridView search = view(g);
     search.neighbour_list = nullptr;

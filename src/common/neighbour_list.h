@@ -1,0 +1,99 @@
+// Each particle's neighbours, listed once per step by the grid phase of the CPU builds (cpu and host) and
+// read by density, forces and mirror walls (grid.h, for_each_neighbour). Two ways to the same list; the
+// back end times both and uses the faster (neighbour_list_choice.h):
+//   - with a branch per candidate: fast while the particles sit on a lattice, whose pattern the CPU's
+//     branch predictor learns;
+//   - without a branch, four candidates at a time (GCC vector extensions: SSE on x86-64): once the fluid
+//     is disordered "is b within h?" is a coin toss (27% yes), and mispredicted branches had doubled the
+//     cost of a dam-break step by its end (issue 11, item 9).
+// Both compute r^2 = |x_a - x_b|^2 exactly as the loops do, so the list holds exactly the particles the
+// GPU's direct search finds, in the same order.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include "grid.h"
+
+namespace sph {
+
+#if !defined(__CUDACC__)
+namespace neighbour_simd {
+
+typedef float Floats4 __attribute__((vector_size(16)));
+typedef int32_t Ints4 __attribute__((vector_size(16)));
+
+// For each mask of four lanes: its set lanes in order (the rest 0), and how many there are.
+struct Compaction {
+  int32_t lanes[16][4];
+  int32_t count[16];
+};
+constexpr Compaction make_compaction() {
+  Compaction t{};
+  for (int mask = 0; mask < 16; ++mask) {
+    int k = 0;
+    for (int lane = 0; lane < 4; ++lane)
+      if ((mask >> lane) & 1) t.lanes[mask][k++] = lane;
+    t.count[mask] = k;
+  }
+  return t;
+}
+inline constexpr Compaction kCompaction = make_compaction();
+
+// Appends the particles of [begin, end) within h of xa to list at *m (writes up to 4 slots from
+// min(*m, capacity), the list having kNeighbourListStride slots).
+inline void filter_range(const Vec3* pos, Vec3 xa, float h2, int32_t begin, int32_t end, int32_t* list,
+                         int32_t capacity, int32_t& m) {
+  const Floats4 ax = {xa.x, xa.x, xa.x, xa.x}, ay = {xa.y, xa.y, xa.y, xa.y}, az = {xa.z, xa.z, xa.z, xa.z};
+  const Floats4 reach2 = {h2, h2, h2, h2};
+  const Ints4 stop = {end, end, end, end};
+  const int32_t last = end - 1;
+  for (int32_t b = begin; b < end; b += 4) {
+    // Lanes past the end read the last candidate again and are masked out.
+    const Vec3 p0 = pos[b], p1 = pos[b + 1 < last ? b + 1 : last], p2 = pos[b + 2 < last ? b + 2 : last],
+               p3 = pos[b + 3 < last ? b + 3 : last];
+    const Floats4 dx = ax - Floats4{p0.x, p1.x, p2.x, p3.x};
+    const Floats4 dy = ay - Floats4{p0.y, p1.y, p2.y, p3.y};
+    const Floats4 dz = az - Floats4{p0.z, p1.z, p2.z, p3.z};
+    const Floats4 r2 = dx * dx + dy * dy + dz * dz;  // as length2: (x^2 + y^2) + z^2
+    const Ints4 index = Ints4{b, b, b, b} + Ints4{0, 1, 2, 3};
+    const Ints4 in = (r2 < reach2) & (index < stop);
+    const int mask = (in[0] & 1) | (in[1] & 2) | (in[2] & 4) | (in[3] & 8);
+    Ints4 lanes;
+    std::memcpy(&lanes, kCompaction.lanes[mask], sizeof lanes);
+    const Ints4 found = Ints4{b, b, b, b} + lanes;
+    std::memcpy(list + (m < capacity ? m : capacity), &found, sizeof found);
+    m += kCompaction.count[mask];
+  }
+}
+
+}  // namespace neighbour_simd
+#endif
+
+// The particles b within h of particle a (|x_a - x_b|^2 < h2, a itself included), in for_each_candidate's
+// order: returns how many there are, and lists them all in list[0, kNeighbourListCapacity) when there
+// are fewer than kNeighbourListCapacity (otherwise the list is incomplete and must not be used). list has
+// kNeighbourListStride slots. kBranchFree: see the top of this file.
+template <bool kBranchFree>
+SPH_HD inline int32_t list_neighbours(const GridView& grid, const Vec3* pos, int32_t a, float h2, int32_t* list) {
+  constexpr int32_t capacity = kNeighbourListCapacity;
+  const Vec3 xa = pos[a];
+  int32_t m = 0;
+  for_each_candidate_range(grid, a, [&](int32_t begin, int32_t end) {
+#if !defined(__CUDACC__)
+    if (kBranchFree) {
+      neighbour_simd::filter_range(pos, xa, h2, begin, end, list, capacity, m);
+      return;
+    }
+#endif
+    for (int32_t b = begin; b < end; ++b) {
+      if (length2(xa - pos[b]) < h2) {
+        if (m < capacity) list[m] = b;
+        ++m;
+      }
+    }
+  });
+  return m;
+}
+
+}  // namespace sph
