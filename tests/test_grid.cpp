@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/grid.h"
+#include "common/neighbour_list.h"
 #include "common/kernels.h"
 #include "common/params.h"
 #include "common/particle_state.h"
@@ -248,4 +249,26 @@ TEST_CASE("grid neighbour sets equal brute force: empty regions and no particles
     backend.build_grid();
     CHECK(backend.state().size() == 0);
   }
+}
+
+TEST_CASE("neighbour lists: capacity from the expected neighbour count, none where lists would be too long", "[grid]") {
+  sph::SimConstants c = make_constants(0.1, Vec3{0.0f, 0.0f, 0.0f}, 10, 10, 10);
+  c.num_fluids = 1;
+  c.fluids[0].rest_density = 1000.0f;
+  const double ball = 4.0 / 3.0 * sph::kPiDouble * 0.001;  // 4/3 pi h^3
+  auto with_neighbours = [&](double n) {
+    c.fluids[0].mass = float(ball * 1000.0 / n);
+    return sph::neighbour_list_capacity(c);
+  };
+  CHECK(with_neighbours(32.0) == 64);   // twice the expected count
+  CHECK(with_neighbours(33.0) == 68);   // a multiple of 4
+  CHECK(with_neighbours(5.0) == 32);    // at least 32
+  CHECK(with_neighbours(127.0) == 256);
+  CHECK(with_neighbours(200.0) == 0);   // no lists: every loop searches
+  // A second, denser fluid sets the capacity.
+  c.num_fluids = 2;
+  c.fluids[0].mass = float(ball * 1000.0 / 20.0);
+  c.fluids[1].rest_density = 1000.0f;
+  c.fluids[1].mass = float(ball * 1000.0 / 40.0);
+  CHECK(sph::neighbour_list_capacity(c) == 80);
 }

@@ -168,11 +168,9 @@ SPH_HD inline void for_each_candidate(const GridView& grid, int32_t a, F&& f) {
   });
 }
 
-// Neighbours listed per particle on the CPU builds (grid.neighbour_list, neighbour_list.h): a list is
-// complete when the particle has fewer neighbours than this (typical counts are 25 to 40); otherwise the
-// loops search. Each list has 4 more slots than that, which the vectorised filter may write past the end.
-constexpr int32_t kNeighbourListCapacity = 64;
-constexpr int32_t kNeighbourListStride = kNeighbourListCapacity + 4;
+// Neighbour lists of the CPU builds (grid.neighbour_list, neighbour_list.h): each particle's list has
+// list_capacity + kNeighbourListPad slots, the pad for the vectorised filter, which may write past the end.
+constexpr int32_t kNeighbourListPad = 4;
 
 // Calls f(b, xab, r2) for every particle b with r2 = |x_a - x_b|^2 < h2 (a itself included), xab = x_a - x_b,
 // in for_each_candidate's order on every back end, so every sum has the same bits. The CPU builds read
@@ -182,8 +180,8 @@ template <class F>
 SPH_HD inline void for_each_neighbour(const GridView& grid, const Vec3* pos, int32_t a, float h2, F&& f) {
   const Vec3 xa = pos[a];
 #if !defined(__CUDA_ARCH__)
-  if (grid.neighbour_list != nullptr && grid.neighbour_count[a] < kNeighbourListCapacity) {
-    const int32_t* list = grid.neighbour_list + int64_t(a) * kNeighbourListStride;
+  if (grid.neighbour_list != nullptr && grid.neighbour_count[a] < grid.list_capacity) {
+    const int32_t* list = grid.neighbour_list + int64_t(a) * (grid.list_capacity + kNeighbourListPad);
     for (int32_t t = 0, m = grid.neighbour_count[a]; t < m; ++t) {
       const Vec3 xab = xa - pos[list[t]];
       f(list[t], xab, length2(xab));

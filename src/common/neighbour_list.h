@@ -14,8 +14,24 @@
 #include <cstring>
 
 #include "grid.h"
+#include "kernels.h"
+#include "params.h"
 
 namespace sph {
+
+// Slots of a particle's list: twice the neighbours a particle of the densest fluid has at rest
+// (4/3 pi h^3 rho0 / m), at least 32, a multiple of 4; 0 (no lists: search in every loop) beyond 256,
+// where the lists' memory would outweigh the search they save.
+inline int32_t neighbour_list_capacity(const SimConstants& c) {
+  double expected = 0.0;
+  for (int32_t f = 0; f < c.num_fluids; ++f) {
+    const double h = c.kernel.h;
+    const double n = 4.0 / 3.0 * kPiDouble * h * h * h * c.fluids[f].rest_density / c.fluids[f].mass;
+    expected = n > expected ? n : expected;
+  }
+  const double slots = 2.0 * expected < 32.0 ? 32.0 : 2.0 * expected;
+  return slots > 256.0 || !(slots == slots) ? 0 : (int32_t(slots) + 3) / 4 * 4;
+}
 
 #if !defined(__CUDACC__)
 namespace neighbour_simd {
@@ -41,7 +57,7 @@ constexpr Compaction make_compaction() {
 inline constexpr Compaction kCompaction = make_compaction();
 
 // Appends the particles of [begin, end) within h of xa to list at *m (writes up to 4 slots from
-// min(*m, capacity), the list having kNeighbourListStride slots).
+// min(*m, capacity), the list having capacity + kNeighbourListPad slots).
 inline void filter_range(const Vec3* pos, Vec3 xa, float h2, int32_t begin, int32_t end, int32_t* list,
                          int32_t capacity, int32_t& m) {
   const Floats4 ax = {xa.x, xa.x, xa.x, xa.x}, ay = {xa.y, xa.y, xa.y, xa.y}, az = {xa.z, xa.z, xa.z, xa.z};
@@ -71,12 +87,12 @@ inline void filter_range(const Vec3* pos, Vec3 xa, float h2, int32_t begin, int3
 #endif
 
 // The particles b within h of particle a (|x_a - x_b|^2 < h2, a itself included), in for_each_candidate's
-// order: returns how many there are, and lists them all in list[0, kNeighbourListCapacity) when there
-// are fewer than kNeighbourListCapacity (otherwise the list is incomplete and must not be used). list has
-// kNeighbourListStride slots. kBranchFree: see the top of this file.
+// order: returns how many there are, and lists them all in list[0, capacity) when there are fewer than
+// capacity (otherwise the list is incomplete and must not be used). list has capacity + kNeighbourListPad
+// slots. kBranchFree: see the top of this file.
 template <bool kBranchFree>
-SPH_HD inline int32_t list_neighbours(const GridView& grid, const Vec3* pos, int32_t a, float h2, int32_t* list) {
-  constexpr int32_t capacity = kNeighbourListCapacity;
+SPH_HD inline int32_t list_neighbours(const GridView& grid, const Vec3* pos, int32_t a, float h2, int32_t* list,
+                                      int32_t capacity) {
   const Vec3 xa = pos[a];
   int32_t m = 0;
   for_each_candidate_range(grid, a, [&](int32_t begin, int32_t end) {

@@ -38,10 +38,12 @@ struct GridView {
   const int32_t* particle_block;    // n: index of each particle's block
   const int32_t* block_neighbours;  // 27 per block: the blocks at offsets (-1..1)^3, z slowest; -1 = none
   const int32_t* cell_start;        // 129 per block: first particle of each of its 128 cells, then its end
-  // CPU builds only (nullptr on the GPU): each particle's neighbours within h, in the search's order,
-  // kNeighbourListCapacity slots per particle, and their count (not below the capacity: incomplete, search).
+  // CPU builds only (nullptr on the GPU, and where lists would be too long): each particle's neighbours
+  // within h, in the search's order, list_capacity + kNeighbourListPad slots per particle, and their count
+  // (not below list_capacity: the list is incomplete, search instead).
   const int32_t* neighbour_list;
   const int32_t* neighbour_count;
+  int32_t list_capacity;
 };
 
 }  // namespace sph

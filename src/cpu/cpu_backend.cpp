@@ -104,16 +104,20 @@ void CpuBackend::build_grid() {
                      cell_start_.data() + std::size_t(b) * kBlockTable);
     find_block_neighbours(block_code_.data(), blocks, b, block_neighbours_.data() + std::size_t(b) * kBlockNeighbours);
   }
-  neighbour_list_.resize(std::size_t(n) * kNeighbourListStride);
+  list_capacity_ = neighbour_list_capacity(c_);
+  if (list_capacity_ == 0) return;  // no lists: every loop searches
+  const std::size_t stride = std::size_t(list_capacity_ + kNeighbourListPad);
+  neighbour_list_.resize(std::size_t(n) * stride);
   neighbour_count_.resize(std::size_t(n));
   GridView search = grid_view();
   search.neighbour_list = nullptr;
   const auto t0 = std::chrono::steady_clock::now();
   const bool branch_free = list_choice_.branch_free();
   for (int32_t a = 0; a < n; ++a) {
-    int32_t* list = neighbour_list_.data() + std::size_t(a) * kNeighbourListStride;
-    neighbour_count_[std::size_t(a)] = branch_free ? list_neighbours<true>(search, s_.pos.data(), a, c_.kernel.h2, list)
-                                                   : list_neighbours<false>(search, s_.pos.data(), a, c_.kernel.h2, list);
+    int32_t* list = neighbour_list_.data() + std::size_t(a) * stride;
+    neighbour_count_[std::size_t(a)] =
+        branch_free ? list_neighbours<true>(search, s_.pos.data(), a, c_.kernel.h2, list, list_capacity_)
+                    : list_neighbours<false>(search, s_.pos.data(), a, c_.kernel.h2, list, list_capacity_);
   }
   list_choice_.record(branch_free, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                       std::size_t(n));

@@ -37,8 +37,14 @@ class CpuBackend final : public Backend {
   void recycle();
 
   GridView grid_view() const {
-    return GridView{c_.grid,           key_.data(),           particle_block_.data(), block_neighbours_.data(),
-                    cell_start_.data(), neighbour_list_.data(), neighbour_count_.data()};
+    return GridView{c_.grid,
+                    key_.data(),
+                    particle_block_.data(),
+                    block_neighbours_.data(),
+                    cell_start_.data(),
+                    list_capacity_ > 0 ? neighbour_list_.data() : nullptr,
+                    neighbour_count_.data(),
+                    list_capacity_};
   }
   const SimConstants& constants() const { return c_; }
   ParticleState& state() { return s_; }
@@ -57,6 +63,7 @@ class CpuBackend final : public Backend {
   std::vector<uint64_t> key_, block_code_;
   std::vector<int32_t> particle_block_, block_begin_, block_neighbours_, cell_start_;
   std::vector<int32_t> neighbour_list_, neighbour_count_;
+  int32_t list_capacity_ = 0;  // neighbour_list_capacity(c_) at the last grid build
   NeighbourListChoice list_choice_;
   PhaseTimes times_;
 };

@@ -411,7 +411,7 @@ class DeviceBackend final : public Backend {
   }
 
   // Sort by (cell key, id) and build the block tables (device_grid.h), moving every array into that order.
-  void build_grid() { grid_.build(c_.grid, c_.kernel.h2, d_, sorted_, with_temporaries(temporary_)); }
+  void build_grid() { grid_.build(c_, d_, sorted_, with_temporaries(temporary_)); }
 
   void density(float dt) {
     if (c_.density == DensityMethod::Summation)

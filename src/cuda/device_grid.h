@@ -88,8 +88,9 @@ struct NeighbourListFn {
   float h2;
   int32_t* list;
   int32_t* count;
+  int32_t capacity;
   SPH_HD void operator()(int32_t a) const {
-    count[a] = list_neighbours<kBranchFree>(g, pos, a, h2, list + int64_t(a) * kNeighbourListStride);
+    count[a] = list_neighbours<kBranchFree>(g, pos, a, h2, list + int64_t(a) * (capacity + kNeighbourListPad), capacity);
   }
 };
 
@@ -102,7 +103,8 @@ class DeviceGrid {
 
   // Sorts d by (cell key, id) (sorted: the reordering buffer, swapped with d) and builds the tables.
   template <class Policy>
-  void build(const GridGeometry& g, float h2, DeviceArrays& d, DeviceArrays& sorted, Policy policy) {
+  void build(const SimConstants& c, DeviceArrays& d, DeviceArrays& sorted, Policy policy) {
+    const GridGeometry& g = c.grid;
     const int32_t n = int32_t(d.size());
     key_.resize(std::size_t(n));
     order_.resize(std::size_t(n));
@@ -127,20 +129,21 @@ class DeviceGrid {
     launch(blocks_, BlockTablesFn{raw(key_), raw(block_begin_), raw(block_code_), blocks_, raw(cell_start_),
                                   raw(block_neighbours_)});
 #if !defined(__CUDACC__)
-    neighbour_list_.resize(std::size_t(n) * kNeighbourListStride);
+    list_capacity_ = neighbour_list_capacity(c);
+    if (list_capacity_ == 0) return;  // no lists: every loop searches
+    neighbour_list_.resize(std::size_t(n) * std::size_t(list_capacity_ + kNeighbourListPad));
     neighbour_count_.resize(std::size_t(n));
     GridView search = view(g);
     search.neighbour_list = nullptr;
+    const float h2 = c.kernel.h2;
     const auto t0 = std::chrono::steady_clock::now();
     const bool branch_free = list_choice_.branch_free();
     if (branch_free)
-      launch(n, NeighbourListFn<true>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_)});
+      launch(n, NeighbourListFn<true>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_), list_capacity_});
     else
-      launch(n, NeighbourListFn<false>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_)});
+      launch(n, NeighbourListFn<false>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_), list_capacity_});
     list_choice_.record(branch_free, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                         std::size_t(n));
-#else
-    (void)h2;
 #endif
   }
 
@@ -150,8 +153,9 @@ class DeviceGrid {
                     raw(particle_block_),
                     raw(block_neighbours_),
                     raw(cell_start_),
-                    neighbour_list_.empty() ? nullptr : raw(neighbour_list_),
-                    neighbour_count_.empty() ? nullptr : raw(neighbour_count_)};
+                    list_capacity_ > 0 ? raw(neighbour_list_) : nullptr,
+                    raw(neighbour_count_),
+                    list_capacity_};
   }
 
  private:
@@ -167,6 +171,7 @@ class DeviceGrid {
   DeviceVector<uint64_t> key_, block_code_;
   DeviceVector<int32_t> order_, flag_, particle_block_, block_begin_, cell_start_, block_neighbours_;
   DeviceVector<int32_t> neighbour_list_, neighbour_count_;  // host build only
+  int32_t list_capacity_ = 0;  // host build: neighbour_list_capacity at the last build; cuda: 0 (no lists)
   NeighbourListChoice list_choice_;
   int32_t blocks_ = 0;
 };
