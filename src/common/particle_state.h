@@ -84,11 +84,11 @@ struct ParticleState {
 };
 
 // Bytes of memory one particle needs at peak, used to refuse particle counts that cannot fit before
-// allocating anything. The fields above take 97 bytes and the derived ones 12; the state, its reorder copy,
-// the downloaded copy, the grid (sort records, keys, block tables) and the CPU builds' neighbour lists (64
-// slots at the default 32 neighbours) make about seven times the 97. Measured peak resident size of scenes/dam_break.json (/usr/bin/time
-// -v, 5 steps) at 128,000 particles: 624 bytes per particle on cpu, 718 on host (599 and 684 per added
-// particle from 16k), before the 12 bytes of derived fields were added.
+// allocating anything. The fields above take 97 bytes and the derived ones 12; the state, its reorder
+// copy, the downloaded copy, the grid (sort records, keys, block tables) and the CPU builds' neighbour
+// lists (64 slots at the default 32 neighbours) make about seven times the 97. Measured peak resident
+// size of scenes/dam_break.json (/usr/bin/time -v, 5 steps) at 128,000 particles: 624 bytes per particle
+// on cpu, 718 on host (599 and 684 per added particle from 16k), before the derived fields were added.
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
 constexpr std::size_t kDerivedFieldBytes = 3 * sizeof(float);
 constexpr std::size_t kBytesPerParticle = 7 * kParticleFieldBytes + kDerivedFieldBytes;
