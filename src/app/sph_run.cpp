@@ -124,8 +124,8 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << "backend: " << sim.backend().name() << "\n"
             << "spacing: " << st.spacing << " m, h: " << st.h << " m, neighbours: " << scene.neighbours
             << ", lattice kernel sum: " << st.lattice_density << "\n"
-            << "grid: " << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz
-            << " cells of " << st.constants.grid.cell_size << " m\n"
+            << "grid: cells of " << st.constants.grid.cell_size << " m, only where particles are; domain "
+            << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz << " cells\n"
             << "integrator: " << integrator_name(scene.integrator) << ", speed bound: " << sim.speed_bound()
             << " m/s, energy budget: " << sim.energy_budget() << " J\n"
             << (sim.relaxation().ran ? sim.relaxation().summary() + "\n" : std::string())

@@ -1,12 +1,12 @@
 // The neighbour grid shared by every back end: a grid over the particles, not over the domain.
 //
 // Cells are h / 2 wide (reach 2: every neighbour within h lies in the 5 x 5 x 5 cells around a particle's
-// own; 42% fewer candidates than 27 cells of h). Cells are grouped in blocks of 8 x 4 x 4. A particle's
+// own; 42% fewer candidates than 27 cells of h). Cells are grouped in blocks of 16 x 4 x 4. A particle's
 // 64-bit cell key is the Morton (Z-order) code of its block followed by its cell inside the block, rows
-// of 8 cells along x contiguous. Particles are sorted by (cell key, id), so only occupied blocks exist:
+// of 16 cells along x contiguous. Particles are sorted by (cell key, id), so only occupied blocks exist:
 // memory and time scale with the particle count whatever the size of the domain, and the Morton order
 // keeps neighbouring blocks close in memory whatever the fluid's shape (issue 11, items 7 and 9).
-// Each occupied block holds a dense table of its 128 cells' first particles and the indices of its 26
+// Each occupied block holds a dense table of its 256 cells' first particles and the indices of its 26
 // neighbour blocks, so a search finds every row of up to 5 cells as one or two index ranges without any
 // lookup: grid_build.h builds the tables, the back ends only schedule the loops.
 #pragma once
@@ -16,20 +16,17 @@
 #include "particle_view.h"
 #include "sph_hd.h"
 
-#ifndef SPH_BLOCK_X_BITS
-#define SPH_BLOCK_X_BITS 4
-#endif
 
 namespace sph {
 
 constexpr int32_t kGridReach = 2;                // cells on each side a search visits (cells of h / 2)
-constexpr int kBlockXBits = SPH_BLOCK_X_BITS, kBlockYBits = 2, kBlockZBits = 2;
+constexpr int kBlockXBits = 4, kBlockYBits = 2, kBlockZBits = 2;  // blocks of 16 x 4 x 4 cells
 constexpr int32_t kBlockX = 1 << kBlockXBits, kBlockY = 1 << kBlockYBits, kBlockZ = 1 << kBlockZBits;
 constexpr int kLocalBits = kBlockXBits + kBlockYBits + kBlockZBits;
-constexpr int32_t kCellsPerBlock = 1 << kLocalBits;  // 128: 7 bits of the key
+constexpr int32_t kCellsPerBlock = 1 << kLocalBits;  // 256: 8 bits of the key
 constexpr int32_t kBlockTable = kCellsPerBlock + 1;  // per block: first particle of each cell, then the end
 constexpr int32_t kBlockNeighbours = 27;            // per block: itself and its 26 neighbours (-1: empty)
-constexpr int32_t kBlockBits = 18;                   // per axis: 2^18 blocks, about +-2^17 * 4h from the origin
+constexpr int32_t kBlockBits = 18;  // per axis: 2^18 blocks, +-2^17 blocks from the origin (+-2^18 h in y, z)
 constexpr uint64_t kLocalMask = uint64_t(kCellsPerBlock) - 1;
 
 // Cell coordinate along one axis, counted from the cell that holds the grid origin plus half the range,

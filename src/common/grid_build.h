@@ -31,7 +31,8 @@ SPH_HD inline int32_t cell_end(const uint64_t* key, int32_t j, int32_t n) {
   return e;
 }
 
-// table[l] = first particle of block's cell l, or of the next occupied cell after it; table[128] = end.
+// table[l] = first particle of block's cell l, or of the next occupied cell after it; the last entry
+// (table[kCellsPerBlock]) = end.
 // key[begin, end): the block's particles, sorted.
 SPH_HD inline void fill_block_table(const uint64_t* key, int32_t begin, int32_t end, int32_t* table) {
   int32_t j = begin;

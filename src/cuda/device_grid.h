@@ -97,7 +97,7 @@ struct NeighbourListFn {
 class DeviceGrid {
  public:
   // Device bytes per particle for the grid, assuming blocks of at least 8 particles on average (a dense
-  // fluid fills a block of 128 cells with about 128; a thin spray fewer).
+  // fluid fills a block of 256 cells with about 256; a thin spray fewer).
   static constexpr std::size_t kBytesPerParticle =
       sizeof(uint64_t) + 3 * sizeof(int32_t) + (kBlockTable + kBlockNeighbours + 1) * sizeof(int32_t) / 8 + sizeof(uint64_t) / 8;
 
