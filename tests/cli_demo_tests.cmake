@@ -74,7 +74,8 @@ sph_cli_test(demo_budget_zero --exit 1 --stderr "--budget-ms must be a finite" -
 sph_cli_test(demo_bad_keys --exit 1 --stderr "--keys" --stderr "allowed keys" -- ${SPH_DEMO} --keys Q)
 
 # --- sph_demo under Xvfb (skipped, exit 77, without xvfb-run) ------------------------------------------
-set(SPH_XVFB xvfb-run -a -s "-screen 0 1280x720x24")
+# xvfb_run.sh: the demo under xvfb-run, with the demo's own exit status (see the script).
+set(SPH_XVFB bash ${CMAKE_CURRENT_SOURCE_DIR}/data/xvfb_run.sh)
 function(sph_demo_xvfb_test name)
   add_test(NAME cli_${name}
            COMMAND bash -c "command -v xvfb-run >/dev/null || exit 77; exec bash \"$0\" \"$@\"" ${SPH_CLI_CHECK} ${ARGN}
