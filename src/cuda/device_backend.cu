@@ -16,7 +16,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <thrust/count.h>
 #include <thrust/copy.h>
 #include <thrust/execution_policy.h>
 #include <thrust/iterator/counting_iterator.h>
