@@ -10,6 +10,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/grid.h"
@@ -102,6 +103,11 @@ std::size_t check_grid(const sph::SimConstants& c, const std::vector<Vec3>& posi
       visited.push_back(b);
       if (within(pa, s.pos[std::size_t(b)], h)) from_grid.insert(s.id[std::size_t(b)]);
     });
+    // The GPU's schedule of the search gives the same ranges in the same order as the CPU's.
+    std::vector<std::pair<int32_t, int32_t>> nested, by_counter;
+    sph::candidate_ranges_nested(view, int32_t(a), [&](int32_t b, int32_t e) { nested.emplace_back(b, e); });
+    sph::candidate_ranges_by_counter(view, int32_t(a), [&](int32_t b, int32_t e) { by_counter.emplace_back(b, e); });
+    REQUIRE(nested == by_counter);
     sph::for_each_neighbour(view, s.pos.data(), int32_t(a), c.kernel.h2, [&](int32_t b, Vec3 xab, float r2) {
       REQUIRE(r2 == sph::length2(xab));
       from_neighbour_loop.insert(s.id[std::size_t(b)]);

@@ -91,30 +91,42 @@ SPH_HD inline int32_t cell_index(const GridGeometry& g, Vec3 p) {
   return int32_t(uint32_t(k) ^ uint32_t(k >> 32));
 }
 
-// Calls f(begin, end) for every index range of particles in the 5 x 5 x 5 cells around particle a's cell
-// (its own included): one or two ranges per row of 5 cells, in one fixed order (rows by z, then y, then x
-// ascending), the same on every back end, so that every sum over neighbours has the same bits. Written with
-// few live values: the GPU kernels that call it must stay within their register budgets without
-// spilling (tests/ptxas_resources.sh).
+// A read of data that stays constant during a kernel: through the read-only cache on a GPU.
+template <class T>
+SPH_HD inline T read_only(const T* p) {
+#if defined(__CUDA_ARCH__)
+  return __ldg(p);
+#else
+  return *p;
+#endif
+}
+
+// The index ranges of particles in the 5 x 5 x 5 cells around particle a's cell (its own included): one
+// or two ranges per row of 5 cells, in one fixed order (rows by z, then y, then x ascending), so that
+// every sum over neighbours has the same bits on every back end. Two schedules of the same ranges, both
+// compiled everywhere so that tests/test_grid.cpp checks they call f(begin, end) identically:
+//
+// candidate_ranges_by_counter (GPU): one counter over (row, part), part 0 and 1 being the row's cells in
+// the left and right block of the two it may touch along x (a part with no cells is skipped); the
+// particle's block and cell are read again in each turn rather than held, so that the forces kernel fits
+// 80 registers without spilling (tests/ptxas_resources.sh).
 template <class F>
-SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&& f) {
+SPH_HD inline void candidate_ranges_by_counter(const GridView& grid, int32_t a, F&& f) {
   constexpr int32_t kSide = 2 * kGridReach + 1;
 #if defined(__CUDA_ARCH__)
-  // One counter over (row, part): part 0 and 1 are the row's cells in the left and right block of the two
-  // it may touch along x; a part with no cells is skipped. The particle's block and cell are read again in
-  // each turn (from L1) rather than held: forces must fit in 80 registers without spilling.
 #pragma unroll 1
+#endif
   for (int32_t s = 0; s < 2 * kSide * kSide; ++s) {
-    const int32_t lx = int32_t(__ldg(grid.key + a) & uint64_t(kBlockX - 1));
+    const int32_t lx = int32_t(read_only(grid.key + a) & uint64_t(kBlockX - 1));
     const int32_t bx = (lx < kGridReach ? -1 : 0) + (s & 1);
     if (bx > (lx + kGridReach >= kBlockX ? 1 : 0)) continue;
-    const int32_t here = int32_t(__ldg(grid.key + a) & kLocalMask);
+    const int32_t here = int32_t(read_only(grid.key + a) & kLocalMask);
     const int32_t r = s >> 1;
     const int32_t z = (here >> (kBlockXBits + kBlockYBits)) + r / kSide - kGridReach;
     const int32_t y = ((here >> kBlockXBits) & (kBlockY - 1)) + r % kSide - kGridReach;
     const int32_t bz = z < 0 ? -1 : (z >= kBlockZ ? 1 : 0);
     const int32_t by = y < 0 ? -1 : (y >= kBlockY ? 1 : 0);
-    const int32_t block = grid.block_neighbours[int64_t(__ldg(grid.particle_block + a)) * kBlockNeighbours +
+    const int32_t block = grid.block_neighbours[int64_t(read_only(grid.particle_block + a)) * kBlockNeighbours +
                                                 (bz + 1) * 9 + (by + 1) * 3 + (bx + 1)];
     if (block < 0) continue;
     const int32_t from = lx - kGridReach - kBlockX * bx > 0 ? lx - kGridReach - kBlockX * bx : 0;
@@ -123,11 +135,13 @@ SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&&
                            (y - kBlockY * by) * kBlockX;
     f(start[from], start[to + 1]);
   }
-#else
-  // The same ranges in the same order, with everything that does not change along the loops hoisted (on a
-  // CPU the range arithmetic was a good part of the search's cost).
+}
+
+// candidate_ranges_nested (CPU): nested loops with everything that does not change along them hoisted (on
+// a CPU the range arithmetic was a good part of the search's cost).
+template <class F>
+SPH_HD inline void candidate_ranges_nested(const GridView& grid, int32_t a, F&& f) {
   const int32_t local = int32_t(grid.key[a] & kLocalMask);
-  const int32_t block_a = grid.particle_block[a];
   const int32_t lx = local & (kBlockX - 1), ly = (local >> kBlockXBits) & (kBlockY - 1),
                 lz = local >> (kBlockXBits + kBlockYBits);
   int32_t parts = 0, part_bx[2], part_from[2], part_to[2];
@@ -136,7 +150,7 @@ SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&&
     part_from[parts] = lx - kGridReach - kBlockX * bx > 0 ? lx - kGridReach - kBlockX * bx : 0;
     part_to[parts] = (lx + kGridReach - kBlockX * bx < kBlockX - 1 ? lx + kGridReach - kBlockX * bx : kBlockX - 1) + 1;
   }
-  const int32_t* around = grid.block_neighbours + int64_t(block_a) * kBlockNeighbours;
+  const int32_t* around = grid.block_neighbours + int64_t(grid.particle_block[a]) * kBlockNeighbours;
   for (int32_t z = lz - kGridReach; z <= lz + kGridReach; ++z) {
     const int32_t bz = z < 0 ? -1 : (z >= kBlockZ ? 1 : 0);
     const int32_t z_offset = (z - kBlockZ * bz) * (kBlockX * kBlockY);
@@ -152,7 +166,15 @@ SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&&
       }
     }
   }
-  (void)kSide;
+}
+
+// Calls f(begin, end) for every candidate range around particle a, in the order above.
+template <class F>
+SPH_HD inline void for_each_candidate_range(const GridView& grid, int32_t a, F&& f) {
+#if defined(__CUDA_ARCH__)
+  candidate_ranges_by_counter(grid, a, f);
+#else
+  candidate_ranges_nested(grid, a, f);
 #endif
 }
 
