@@ -1,5 +1,5 @@
 // Neighbour grid (src/common/grid.h, grid_build.h, CpuBackend::build_grid): the neighbour sets found through
-// the grid equal an O(N^2) brute force, for uniform and clustered particles, particles far outside the
+// the grid equal an O(N^2) brute force, every way of listing them gives the direct search's list in its order, for uniform and clustered particles, particles far outside the
 // domain (beyond the keys' range they share border cells), empty regions and an empty particle set; and the
 // sorted layout is consistent (ascending (key, id), every particle inside its own cell's range of its
 // block's table, tables monotone, no particle lost).
@@ -15,6 +15,7 @@
 
 #include "common/grid.h"
 #include "common/neighbour_list.h"
+#include "common/neighbour_rows.h"
 #include "common/kernels.h"
 #include "common/params.h"
 #include "common/particle_state.h"
@@ -90,6 +91,47 @@ std::size_t check_grid(const sph::SimConstants& c, const std::vector<Vec3>& posi
     REQUIRE(int32_t(i) < table[local + 1]);
     for (int32_t l = 0; l < sph::kCellsPerBlock; ++l) REQUIRE(table[l] <= table[l + 1]);
     REQUIRE(view.block_neighbours[int64_t(view.particle_block[i]) * sph::kBlockNeighbours + 13] == view.particle_block[i]);
+  }
+
+  // The neighbour lists, made per particle (list_neighbours) and per row of cells (neighbour_rows.h, as
+  // the back ends make them), each with a branch and without: exactly the direct search's neighbours, in
+  // its order (the order of every sum, which the GPU's direct search must match bit for bit).
+  const int32_t capacity = int32_t(n) + 4;
+  const std::size_t stride = std::size_t(capacity + sph::kNeighbourListPad);
+  std::vector<int32_t> by_rows[2], by_rows_count[2];
+  for (int variant = 0; variant < 2; ++variant) {
+    by_rows[variant].assign(n * stride, -1);
+    by_rows_count[variant].assign(n, -1);
+    int32_t blocks = 0;
+    for (std::size_t i = 0; i < n; ++i) blocks = std::max(blocks, view.particle_block[i] + 1);
+    for (int32_t b = 0; b < blocks; ++b)
+      for (int32_t row = 0; row < sph::kBlockY * sph::kBlockZ; ++row) {
+        if (variant == 0)
+          sph::neighbour_rows::list_row_neighbours<false>(view, s.pos.data(), c.kernel.h2, b, row, by_rows[0].data(),
+                                                          by_rows_count[0].data(), capacity);
+        else
+          sph::neighbour_rows::list_row_neighbours<true>(view, s.pos.data(), c.kernel.h2, b, row, by_rows[1].data(),
+                                                         by_rows_count[1].data(), capacity);
+      }
+  }
+  std::vector<int32_t> list(stride);
+  for (std::size_t a = 0; a < n; ++a) {
+    std::vector<int32_t> direct;
+    sph::for_each_candidate(view, int32_t(a), [&](int32_t b) {
+      if (sph::length2(s.pos[a] - s.pos[std::size_t(b)]) < c.kernel.h2) direct.push_back(b);
+    });
+    INFO("particle " << a << " with " << direct.size() << " neighbours");
+    const auto same = [&](const int32_t* got, int32_t count) {
+      return count == int32_t(direct.size()) && std::equal(direct.begin(), direct.end(), got);
+    };
+    REQUIRE(same(list.data(), sph::list_neighbours<false>(view, s.pos.data(), int32_t(a), c.kernel.h2, list.data(), capacity)));
+    REQUIRE(same(list.data(), sph::list_neighbours<true>(view, s.pos.data(), int32_t(a), c.kernel.h2, list.data(), capacity)));
+    for (int variant = 0; variant < 2; ++variant)
+      REQUIRE(same(by_rows[variant].data() + a * stride, by_rows_count[variant][a]));
+    // The back end's own list, where it holds them all.
+    if (view.neighbour_list != nullptr && view.neighbour_count[a] < view.list_capacity)
+      REQUIRE(same(view.neighbour_list + a * std::size_t(view.list_capacity + sph::kNeighbourListPad),
+                   view.neighbour_count[a]));
   }
 
   // Neighbour sets by id: grid against brute force.
@@ -202,6 +244,20 @@ TEST_CASE("grid neighbour sets equal brute force: clustered particles", "[grid]"
       CHECK(table[only & sph::kLocalMask] == 0);
       CHECK(table[(only & sph::kLocalMask) + 1] == 600);
     }
+  }
+}
+
+TEST_CASE("grid neighbour sets equal brute force: dense rows, longer than a gathered range", "[grid]") {
+  // About 2.3 particles per cell of h / 2: rows of 5 cells hold about 12 candidates (more than the 8 a
+  // range is copied as at once, neighbour_rows.h), and a particle has about 290 in all (fewer than the 384
+  // gathered at most); at 0.37 h about 9 times fewer.
+  const double h = 0.1;
+  const Vec3 origin{0.0f, 0.0f, 0.0f};
+  for (const GridCase& gc : grid_cases(h, origin)) {
+    INFO(gc.name);
+    std::mt19937 rng(31337);
+    const std::vector<Vec3> p = uniform(rng, 1200, Vec3{0.1f, 0.1f, 0.1f}, Vec3{0.5f, 0.5f, 0.5f});
+    CHECK(check_grid(gc.constants, p) > 3000);  // about 40 (h) and 4 (0.37 h) neighbours a particle
   }
 }
 

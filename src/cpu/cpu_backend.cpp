@@ -11,6 +11,7 @@
 #include "../common/forces.h"
 #include "../common/grid_build.h"
 #include "../common/neighbour_list.h"
+#include "../common/neighbour_rows.h"
 #include "../common/integrate.h"
 #include "../common/pressure.h"
 
@@ -113,12 +114,16 @@ void CpuBackend::build_grid() {
   search.neighbour_list = nullptr;
   const auto t0 = std::chrono::steady_clock::now();
   const bool branch_free = list_choice_.branch_free();
-  for (int32_t a = 0; a < n; ++a) {
-    int32_t* list = neighbour_list_.data() + std::size_t(a) * stride;
-    neighbour_count_[std::size_t(a)] =
-        branch_free ? list_neighbours<true>(search, s_.pos.data(), a, c_.kernel.h2, list, list_capacity_)
-                    : list_neighbours<false>(search, s_.pos.data(), a, c_.kernel.h2, list, list_capacity_);
-  }
+  constexpr int32_t kRows = kBlockY * kBlockZ;
+  for (int32_t b = 0; b < blocks; ++b)
+    for (int32_t row = 0; row < kRows; ++row) {
+      if (branch_free)
+        neighbour_rows::list_row_neighbours<true>(search, s_.pos.data(), c_.kernel.h2, b, row, neighbour_list_.data(),
+                                                  neighbour_count_.data(), list_capacity_);
+      else
+        neighbour_rows::list_row_neighbours<false>(search, s_.pos.data(), c_.kernel.h2, b, row, neighbour_list_.data(),
+                                                   neighbour_count_.data(), list_capacity_);
+    }
   list_choice_.record(branch_free, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                       std::size_t(n));
 }

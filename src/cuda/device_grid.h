@@ -12,6 +12,7 @@
 #include "../common/grid_build.h"
 #include "../common/neighbour_list.h"
 #include "../common/neighbour_list_choice.h"
+#include "../common/neighbour_rows.h"
 #include "device_arrays.h"
 #include "device_launch.h"
 
@@ -79,8 +80,9 @@ struct BlockTablesFn {
   }
 };
 
-// The CPU build's neighbour lists (grid.h): not on a GPU, whose candidate loop has no branch predictor to
-// spare and whose memory traffic a list would double.
+// The CPU build's neighbour lists (grid.h), a row of cells of a block per index (neighbour_rows.h): not on a
+// GPU, whose candidate loop has no branch predictor to spare and whose memory traffic a list would double.
+#if !defined(__CUDACC__)
 template <bool kBranchFree>
 struct NeighbourListFn {
   GridView g;
@@ -89,10 +91,13 @@ struct NeighbourListFn {
   int32_t* list;
   int32_t* count;
   int32_t capacity;
-  SPH_HD void operator()(int32_t a) const {
-    count[a] = list_neighbours<kBranchFree>(g, pos, a, h2, list + int64_t(a) * (capacity + kNeighbourListPad), capacity);
+  void operator()(int32_t block_row) const {
+    constexpr int32_t kRows = kBlockY * kBlockZ;
+    neighbour_rows::list_row_neighbours<kBranchFree>(g, pos, h2, block_row / kRows, block_row % kRows, list, count,
+                                                     capacity);
   }
 };
+#endif
 
 class DeviceGrid {
  public:
@@ -138,10 +143,11 @@ class DeviceGrid {
     const float h2 = c.kernel.h2;
     const auto t0 = std::chrono::steady_clock::now();
     const bool branch_free = list_choice_.branch_free();
+    const int32_t block_rows = blocks_ * kBlockY * kBlockZ;
     if (branch_free)
-      launch(n, NeighbourListFn<true>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_), list_capacity_});
+      launch(block_rows, NeighbourListFn<true>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_), list_capacity_});
     else
-      launch(n, NeighbourListFn<false>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_), list_capacity_});
+      launch(block_rows, NeighbourListFn<false>{search, raw(d.pos), h2, raw(neighbour_list_), raw(neighbour_count_), list_capacity_});
     list_choice_.record(branch_free, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                         std::size_t(n));
 #endif
