@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/cli_errors.h"
 #include "common/integrate.h"
 #include "common/scene.h"
 
@@ -73,6 +74,7 @@ double critical_stiffness(Integrator m, bool damped) {
 int main(int argc, char** argv) {
   std::string out = "out/oscillators";
   CLI::App app{"sph_oscillators: largest stable stiffness and energy drift of each integrator on the thesis's oscillators"};
+  sph::use_error_prefix(app);
   app.add_option("--out,-o", out, "output directory (oscillators.csv, oscillators.md)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 

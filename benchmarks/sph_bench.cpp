@@ -23,6 +23,7 @@
 #endif
 
 #include "app/backends.h"
+#include "app/cli_errors.h"
 #include "common/simulation.h"
 #include "cuda/device_backend.h"
 
@@ -120,11 +121,19 @@ std::string json_escape(const std::string& s) {
   return out;
 }
 
+// The scenes the workloads load: ./scenes where sph_bench runs from a checkout (as the README does), else
+// the source tree's that this binary was built from.
+std::string default_scene_dir() {
+  std::error_code ec;
+  if (std::filesystem::is_directory("scenes", ec)) return "scenes";
+  return SPH_SOURCE_DIR "/scenes";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> backends;
-  std::string out = "out/bench", scene_dir = SPH_SOURCE_DIR "/scenes";
+  std::string out = "out/bench", scene_dir = default_scene_dir();
   int warmup = 3, steps = 10, repeats = 3;
   std::vector<int> dam_sizes{20, 37, 80};  // particles across a: about 16k, 100k and 1M particles
   int dam_cuda_only = 127;                 // about 4M particles, on cuda only
@@ -133,9 +142,11 @@ int main(int argc, char** argv) {
                "Workloads: the thesis's performance cube (16^3 and 32^3 particles, thesis 5.2 parameters), a cube of\n"
                "8,000 particles in a 0.2 m and a 50 m tank (the grid's cost against the domain's size) and the\n"
                "dam break at several resolutions. Writes OUT/bench.csv and OUT/bench.json naming the hardware."};
+  sph::use_error_prefix(app);
   app.add_option("--backends", backends, "back ends to measure (default: every usable one)");
   app.add_option("--out,-o", out, "output directory")->capture_default_str();
-  app.add_option("--scenes", scene_dir, "scene directory")->capture_default_str();
+  app.add_option("--scenes", scene_dir,
+                 "scene directory (default: ./scenes if there is one, else the source tree's, " SPH_SOURCE_DIR "/scenes)");
   app.add_option("--warmup", warmup, "steps before measuring")->capture_default_str()->check(CLI::Range(0, 100000));
   app.add_option("--steps", steps, "measured steps per repeat")->capture_default_str()->check(CLI::Range(1, 100000));
   app.add_option("--repeats", repeats, "repeats (fresh simulation each)")->capture_default_str()->check(CLI::Range(1, 1000));

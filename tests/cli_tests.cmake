@@ -37,6 +37,17 @@ sph_cli_test(bad_set
 sph_cli_test(bad_set_path
   --exit 1 --stderr "fluids.7.viscosity" --stderr "not an index"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set fluids.7.viscosity=1 --out ${SPH_CLI_OUT}/bad_set_path)
+# A key misspelt in --set is blamed on the --set, not on the scene file, and says what is allowed.
+sph_cli_test(set_unknown_key
+  --exit 1 --stderr "error: --set \"sph.viscosty=0.1\": sph.viscosty: unknown key" --stderr "viscosity"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set sph.viscosty=0.1 --out ${SPH_CLI_OUT}/set_unknown_key)
+sph_cli_test(set_out_of_range
+  --exit 1 --stderr "error: --set \"fluids.0.viscosity=-1\"" --stderr "out of range"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set fluids.0.viscosity=-1 --out ${SPH_CLI_OUT}/set_out_of_range)
+# Command-line errors read like every other error.
+sph_cli_test(unexpected_argument
+  --exit 1 --stderr "error: The following argument was not expected: extra" --stderr "--help"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json extra --out ${SPH_CLI_OUT}/unexpected_argument)
 # Paths that are not scene files are refused at once, never read forever (/dev/zero) or waited on (FIFO).
 sph_cli_test(scene_dev_zero
   --exit 1 --max-seconds 5 --stderr "/dev/zero" --stderr "not a regular file"

@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_errors.h"
+
 namespace sph {
 
 int parse_demo_options(int argc, char** argv, DemoOptions& o) {
@@ -12,6 +14,7 @@ int parse_demo_options(int argc, char** argv, DemoOptions& o) {
                "Controls: space pause, N step, R reset, [ ] scenes, B back end, arrows tilt gravity, J/L push,\n"
                "ctrl+drag pull/push the water, mouse orbit/pan/zoom, +/- substeps, C colour, V points, P screenshot.\n"
                "Exit status: 0 done, 1 bad input, 2 no display or OpenGL, 3 the simulation became unstable."};
+  sph::use_error_prefix(app);
   app.add_option("--scene,scene", o.scene, "scene file (JSON)")->capture_default_str();
   app.add_option("--backend,-b", o.backend, "back end: cpu, host or cuda")->capture_default_str();
   app.add_option("--frames", o.frames, "render this many frames without input, then exit (headless runs)");

@@ -25,6 +25,7 @@
 #include "../common/setup_budget.h"
 #include "../common/simulation.h"
 #include "backends.h"
+#include "cli_errors.h"
 #include "metrics_file.h"
 #include "option_values.h"
 #include "state_checks.h"
@@ -340,6 +341,7 @@ int main(int argc, char** argv) {
       "SIGINT or SIGTERM stops the run after the current step; the output is flushed and the summary printed.\n"
       "Exit status: 0 done, 1 bad input (scene or options), 3 the simulation became unstable (or its state is\n"
       "not finite), 4 an output could not be written, 130 stopped by SIGINT, 143 stopped by SIGTERM."};
+  sph::use_error_prefix(app);
   app.add_option("scene", o.scene, "scene file (JSON), for example scenes/dam_break.json")->required();
   app.add_option("--backend,-b", o.backend, "back end: " + [] {
     std::string s;

@@ -352,15 +352,10 @@ const char* integrator_name(Integrator m) {
   return "?";
 }
 
-Scene parse_scene(const std::string& text, const std::string& source, const std::vector<std::string>& overrides) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {  // syntax errors, and numbers out of a double's range
-    throw SceneError(source + ": not valid JSON: " + e.what());
-  }
-  for (const auto& o : overrides) apply_override(root, o, source);
+namespace {
 
+// The scene in root (the file with the --set overrides applied); SceneError names source and the key.
+Scene read_scene(const json& root, const std::string& source) {
   Scene s;
   s.source = source;
   ObjectReader r(root, source, "");
@@ -514,6 +509,41 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   }
   r.finish();
   return s;
+}
+
+// The --set override that wrote the key an error message names (source + ": " + key + ": ..."), if any:
+// a typo or a bad value given on the command line must not be blamed on the scene file.
+const std::string* override_of(const std::string& message, const std::string& source,
+                               const std::vector<std::string>& overrides) {
+  if (message.compare(0, source.size() + 2, source + ": ") != 0) return nullptr;
+  const std::string rest = message.substr(source.size() + 2);
+  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {  // the last --set of a key wins
+    const std::string path = it->substr(0, it->find('='));
+    if (rest.compare(0, path.size() + 1, path + ":") == 0 || rest.compare(0, path.size() + 1, path + ".") == 0)
+      return &*it;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source, const std::vector<std::string>& overrides) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::exception& e) {  // syntax errors, and numbers out of a double's range
+    throw SceneError(source + ": not valid JSON: " + e.what());
+  }
+  for (const auto& o : overrides) apply_override(root, o, source);
+  try {
+    return read_scene(root, source);
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    if (const std::string* o = override_of(message, source, overrides))
+      throw SceneError("--set \"" + *o + "\": " + message.substr(source.size() + 2) + " (in the scene " + source +
+                       " as changed by --set)");
+    throw;
+  }
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {

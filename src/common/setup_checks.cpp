@@ -104,14 +104,15 @@ void remove_blocked_points(const Scene& scene, double spacing, const std::vector
   for (const auto& [key, count] : removed) {
     const auto [e, b] = key;
     std::ostringstream os;
-    os << emitter_label(scene.emitters, std::size_t(e)) << ": " << count << " of its "
-       << stats[std::size_t(e)].created << " particles lie " << (outside_is_allowed(scene.boundaries[std::size_t(b)].shape) ? "inside " : "outside ")
-       << boundary_label(scene.boundaries, std::size_t(b))
-       << " or within " << kMinWallClearance << " d = " << min_clearance << " m of its surface";
+    os << emitter_label(scene.emitters, std::size_t(e)) << ": " << count << " of its " << stats[std::size_t(e)].created
+       << " particles lie " << (outside_is_allowed(scene.boundaries[std::size_t(b)].shape) ? "inside " : "outside ")
+       << boundary_label(scene.boundaries, std::size_t(b)) << " or within " << kMinWallClearance
+       << " d = " << min_clearance << " m of its surface";
     if (scene.overlap_error)
       throw SceneError(scene.source + ": " + os.str() +
                        "; move the emitter or the boundary (\"on_overlap\": \"error\"; \"remove\" would remove them)");
-    report.push_back(os.str() + "; removed");
+    // Not an error: an emitter that reaches a wall, or whose whole layers overshoot it, loses those layers.
+    report.push_back(os.str() + "; removed, as where an emitter reaches a wall (\"on_overlap\": \"error\" refuses instead)");
   }
 }
 

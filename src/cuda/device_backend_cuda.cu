@@ -1,5 +1,6 @@
 // The "cuda" build of the device back end: device_backend.cu compiled by nvcc for NVIDIA GPUs, with
 // CUDA-OpenGL interop where OpenGL headers exist (GL/glew.h must come before cuda_gl_interop.h).
+#include <fstream>
 #include <string>
 
 #if defined(SPH_WITH_GL_HEADERS)
@@ -19,11 +20,33 @@ namespace {
 __global__ void kernel_image_probe() {}
 }  // namespace
 
+namespace {
+// Why cudaGetDeviceCount failed, in words a user can act on. The runtime says "driver version is
+// insufficient" both where the driver is too old and where there is no NVIDIA driver at all; the
+// kernel module's /proc/driver/nvidia/version tells the two apart (Linux).
+std::string device_count_failure(cudaError_t status) {
+  std::string driver;
+  std::getline(std::ifstream("/proc/driver/nvidia/version"), driver);
+  int runtime = 0;
+  (void)cudaRuntimeGetVersion(&runtime);
+  const std::string needs = "CUDA " + std::to_string(runtime / 1000) + "." + std::to_string(runtime % 1000 / 10);
+  if (status == cudaErrorInsufficientDriver && driver.empty())
+    return "no NVIDIA driver is loaded (no /proc/driver/nvidia/version); install the NVIDIA driver for " + needs +
+           " or newer, or use --backend host";
+  if (status == cudaErrorInsufficientDriver)
+    return "the NVIDIA driver (" + driver + ") is older than this build's runtime, " + needs +
+           ", needs; update the driver or use --backend host";
+  if (status == cudaErrorNoDevice) return "no CUDA device found";
+  return std::string("no usable CUDA device: ") + cudaGetErrorName(status) + " (" + cudaGetErrorString(status) + ")";
+}
+}  // namespace
+
 bool cuda_device_available(std::string* why) {
   int count = 0;
   const cudaError_t status = cudaGetDeviceCount(&count);
   if (status != cudaSuccess) {
-    if (why) *why = std::string("no usable CUDA device: ") + cudaGetErrorString(status);
+    (void)cudaGetLastError();  // not sticky: clear it
+    if (why) *why = device_count_failure(status);
     return false;
   }
   if (count == 0) {
