@@ -40,6 +40,7 @@ SPH_HD inline float length(Vec3 a) { return sqrtf(dot(a, a)); }
 struct alignas(16) Vec4 {
   float x, y, z, w;
 };
+static_assert(sizeof(Vec4) == 16 && alignof(Vec4) == 16, "one 128-bit load per record");
 
 SPH_HD inline Vec4 with_w(Vec3 a, float w) { return {a.x, a.y, a.z, w}; }
 SPH_HD inline Vec3 xyz(Vec4 a) { return {a.x, a.y, a.z}; }
