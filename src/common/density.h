@@ -30,18 +30,20 @@ template <bool kSummation>
 SPH_HD inline void density_with(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a,
                                 float dt) {
   const KernelCoeffs& k = c.kernel;
-  const Vec3 xa = p.pos[a];
+  const Vec3 xa = xyz(p.pos_mass[a]);
   float rho = 0.0f, rho_near = 0.0f, drho = 0.0f;
-  for_each_neighbour(grid, p.pos, a, k.h2, [&](int32_t b, Vec3 xab, float r2) {
+  // The neighbour's position and mass in one record (pos_mass); continuity reads vel_force, the pressure
+  // phase's packed velocity being written after this phase.
+  for_each_neighbour(grid, p.pos_mass, a, k.h2, [&](int32_t b, Vec3 xab, float r2) {
     const Vec3 vab = kSummation ? Vec3{0.0f, 0.0f, 0.0f} : p.vel_force[a] - p.vel_force[b];
-    density_pair(c, kSummation, c.fluids[p.fluid[b]].mass, xab, r2, vab, rho, rho_near, drho);
+    density_pair(c, kSummation, p.pos_mass[b].w, xab, r2, vab, rho, rho_near, drho);
   });
   // Mirror walls: the ghosts of the neighbours, the particle's own included (mirror_walls.h). A second
   // pass, so the loop above stays as lean as without walls.
   const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
   for_each_ghost(c, grid, p, walls, a, [&](int32_t b, int32_t image, Vec3 xg, float r2) {
     const Vec3 vab = kSummation ? Vec3{0.0f, 0.0f, 0.0f} : p.vel_force[a] - mirror_velocity(walls, image, p.vel_force[b]);
-    density_pair(c, kSummation, c.fluids[p.fluid[b]].mass, xa - xg, r2, vab, rho, rho_near, drho);
+    density_pair(c, kSummation, p.pos_mass[b].w, xa - xg, r2, vab, rho, rho_near, drho);
   });
   p.density[a] = kSummation ? rho : p.density[a] + dt * drho;
   p.near_density[a] = rho_near;

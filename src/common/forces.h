@@ -5,7 +5,8 @@
 // pressure, near pressure and viscosity (mirror_walls.h); the walls then take up momentum.
 //
 // Lean pair loop (issue 11, item 4): the pair terms divide by no density (1 / rho and P / rho^2 come from the
-// pressure phase, pressure.h), and the pressure form and near pressure are template parameters (ForceModel),
+// pressure phase, pressure.h); a neighbour's position and mass, and its velocity and 1 / rho, are each one
+// 16-byte record (pos_mass, vel_inv_rho: one 128-bit load on a GPU); and the pressure form and near pressure are template parameters (ForceModel),
 // chosen once per loop by the back end (with_force_model). The other switches stay run-time tests, uniform
 // over a loop: as template parameters too (viscosity model, artificial viscosity: 24 loops) they gained at most
 // 3% more on cpu but made 14 of the 24 CUDA loops spill past the 80-register target (ptxas, sm_90).
@@ -56,13 +57,17 @@ SPH_HD inline float pressure_pair(float mb, float pa, float pa_rho2, float inv_r
 // and viscosity, added to acc. xab = x_a - x_b, vab = v_a - v_b, 0 < r2 < h^2.
 struct PairSide {  // what the pair needs of one side; *_rho2 = P / rho^2 (over_rho2)
   const FluidConstants* fluid;
+  Vec3 vel;    // vel_force
+  float mass;  // the fluid's mass, from pos_mass
   float rho, inv_rho, pressure, pressure_rho2, near_pressure, near_pressure_rho2;
 };
 
 // Particle i as a side of a pair. A model reads only some of the values; the compiler drops the other loads.
 SPH_HD_ALWAYS_INLINE PairSide particle_side(const SimConstants& c, const ParticleView& p, int32_t i) {
-  return PairSide{&c.fluids[p.fluid[i]], p.density[i],       p.inv_density[i],       p.pressure[i],
-                  p.pressure_rho2[i],    p.near_pressure[i], p.near_pressure_rho2[i]};
+  const Vec4 v = p.vel_inv_rho[i];
+  return PairSide{&c.fluids[p.fluid[i]], xyz(v),         p.pos_mass[i].w,    p.density[i],
+                  v.w,                   p.pressure[i],  p.pressure_rho2[i], p.near_pressure[i],
+                  p.near_pressure_rho2[i]};
 }
 
 template <class Model>
@@ -74,7 +79,7 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
   const float inv_r = 1.0f / r;  // the gradients are dW/dr x_ab / r (kernels.h)
   const FluidConstants& fa = *a.fluid;
   const FluidConstants& fb = *b.fluid;
-  const float mb = fb.mass;
+  const float mb = b.mass;
   const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
 
   float s = pressure_pair<Model::form>(mb, a.pressure, a.pressure_rho2, a.inv_rho, b.pressure, b.pressure_rho2,
@@ -118,21 +123,21 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
   const KernelCoeffs& k = c.kernel;
   const PairSide side_a = particle_side(c, p, a);
   const FluidConstants& fa = *side_a.fluid;
-  const Vec3 xa = p.pos[a];
-  const Vec3 va = p.vel_force[a];
+  const Vec3 xa = xyz(p.pos_mass[a]);
+  const Vec3 va = side_a.vel;
   Vec3 acc{0.0f, 0.0f, 0.0f};
   Vec3 dv{0.0f, 0.0f, 0.0f};
-  for_each_neighbour(grid, p.pos, a, k.h2, [&](int32_t b, Vec3 xab, float r2) SPH_INLINE_LAMBDA {
+  for_each_neighbour(grid, p.pos_mass, a, k.h2, [&](int32_t b, Vec3 xab, float r2) SPH_INLINE_LAMBDA {
     // r2 = 0: the particle itself, or a coincident one, which has no direction to push along.
     if (r2 <= 0.0f) return;
     const PairSide side_b = particle_side(c, p, b);
     const FluidConstants& fb = *side_b.fluid;
-    const Vec3 vab = va - p.vel_force[b];
+    const Vec3 vab = va - side_b.vel;
     pressure_viscosity_pair<Model>(c, side_a, side_b, xab, r2, vab, acc);
-    const float mb = fb.mass;
+    const float mb = side_b.mass;
     if (c.surface_tension_enabled) {  // Becker & Teschner 2007 cohesion, thesis eq. 3.12
       const float kappa = 0.5f * (fa.cohesion + fb.cohesion);
-      acc -= (kappa * mb / fa.mass * poly6(k, r2)) * xab;
+      acc -= (kappa * mb / side_a.mass * poly6(k, r2)) * xab;
     }
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
       dv -= (fa.xsph * mb * poly6(k, r2) / (0.5f * (side_a.rho + side_b.rho))) * vab;
@@ -143,9 +148,9 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
   const NearWalls walls = c.mirror_walls ? near_walls(c, xa) : NearWalls{};
   for_each_ghost(c, grid, p, walls, a, [&](int32_t b, int32_t image, Vec3 xg, float r2) {
     if (r2 <= 0.0f) return;  // a ghost on the particle itself: no direction to push along
-    const Vec3 vg = mirror_velocity(walls, image, p.vel_force[b]);
     PairSide ghost = particle_side(c, p, b);  // b's own, but the pressure extrapolated to the ghost
-    ghost.pressure = ghost_pressure(c, ghost.pressure, ghost.rho, p.pos[b], xg);
+    const Vec3 vg = mirror_velocity(walls, image, ghost.vel);
+    ghost.pressure = ghost_pressure(c, ghost.pressure, ghost.rho, xyz(p.pos_mass[b]), xg);
     ghost.pressure_rho2 = over_rho2(ghost.pressure, ghost.inv_rho);
     const Vec3 xag = xa - xg;
     Vec3 pair{0.0f, 0.0f, 0.0f};

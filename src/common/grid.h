@@ -195,21 +195,22 @@ constexpr int32_t kNeighbourListPad = 4;
 // in for_each_candidate's order on every back end, so every sum has the same bits. The CPU builds read
 // the list made with the grid (neighbour_list.h) when it holds them all: the search and its branch
 // mispredictions are then paid once per step instead of once per loop. A GPU tests each candidate.
-template <class F>
-SPH_HD inline void for_each_neighbour(const GridView& grid, const Vec3* pos, int32_t a, float h2, F&& f) {
-  const Vec3 xa = pos[a];
+// pos: Vec3 positions, or the loops' packed Vec4 records (ParticleView::pos_mass: one 128-bit load on a GPU).
+template <class Pos, class F>
+SPH_HD inline void for_each_neighbour(const GridView& grid, const Pos* pos, int32_t a, float h2, F&& f) {
+  const Vec3 xa = xyz(pos[a]);
 #if !defined(__CUDA_ARCH__)
   if (grid.neighbour_list != nullptr && grid.neighbour_count[a] < grid.list_capacity) {
     const int32_t* list = grid.neighbour_list + int64_t(a) * (grid.list_capacity + kNeighbourListPad);
     for (int32_t t = 0, m = grid.neighbour_count[a]; t < m; ++t) {
-      const Vec3 xab = xa - pos[list[t]];
+      const Vec3 xab = xa - xyz(pos[list[t]]);
       f(list[t], xab, length2(xab));
     }
     return;
   }
 #endif
   for_each_candidate(grid, a, [&](int32_t b) {
-    const Vec3 xab = xa - pos[b];
+    const Vec3 xab = xa - xyz(pos[b]);
     const float r2 = length2(xab);
     if (r2 < h2) f(b, xab, r2);
   });

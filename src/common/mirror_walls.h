@@ -106,10 +106,10 @@ template <class F>
 SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                   const NearWalls& walls, int32_t a, F&& f) {
   if (walls.count == 0) return;
-  const Vec3 xa = p.pos[a];
+  const Vec3 xa = xyz(p.pos_mass[a]);
   const float h2 = c.kernel.h2;
-  for_each_neighbour(grid, p.pos, a, h2, [&](int32_t b, Vec3, float) {
-    const Vec3 xb = p.pos[b];
+  for_each_neighbour(grid, p.pos_mass, a, h2, [&](int32_t b, Vec3, float) {
+    const Vec3 xb = xyz(p.pos_mass[b]);
     for (int32_t image = 1; image < image_count(walls); ++image) {
       const Vec3 xg = mirror_position(walls, image, xb);
       const float r2 = length2(xa - xg);

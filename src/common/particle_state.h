@@ -28,10 +28,13 @@ struct Spawn {
   X(float, near_density) X(float, pressure) X(float, near_pressure) X(float, age) X(uint8_t, fluid) \
   X(int32_t, id) X(Vec3, pos_start)
 
-// Per-particle values derived from the fields above, so that the forces' pair loop has no division (issue 11,
-// item 4): written by the pressure phase of every step (pressure.h) before the forces read them. They are
-// scratch: never copied, reordered, downloaded or written to frames; a restart recomputes them.
-#define SPH_DERIVED_FIELDS(X) X(float, inv_density) X(float, pressure_rho2) X(float, near_pressure_rho2)
+// Per-particle values derived from the fields above for the neighbour loops (issue 11, item 4), in the
+// layout those loops read: pos_mass (x, y, z and the fluid's mass m, so density needs no fluid -> mass
+// lookup) is written by the grid phase after its reorder (pack_position, particle_view.h); vel_inv_rho
+// (vel_force and 1 / rho) and P / rho^2, P_near / rho^2 (so that the forces' pair loop has no division)
+// by the pressure phase (pressure.h), before the forces read them. They are scratch: never copied,
+// reordered, downloaded or written to frames; a restart recomputes them.
+#define SPH_DERIVED_FIELDS(X) X(Vec4, pos_mass) X(Vec4, vel_inv_rho) X(float, pressure_rho2) X(float, near_pressure_rho2)
 
 struct ParticleState {
 #define SPH_DECLARE_FIELD(type, name) std::vector<type> name;
@@ -41,11 +44,26 @@ struct ParticleState {
 
   std::size_t size() const { return pos.size(); }
 
+  // Resizes the particle fields; the derived ones are sized by fit_derived where a back end uses them.
   void resize(std::size_t n) {
 #define SPH_RESIZE_FIELD(type, name) name.resize(n);
     SPH_PARTICLE_FIELDS(SPH_RESIZE_FIELD)
-    SPH_DERIVED_FIELDS(SPH_RESIZE_FIELD)
 #undef SPH_RESIZE_FIELD
+  }
+
+  // Sizes the derived fields to the particle count (their values are written before every use).
+  void fit_derived() {
+#define SPH_FIT_DERIVED_FIELD(type, name) name.resize(size());
+    SPH_DERIVED_FIELDS(SPH_FIT_DERIVED_FIELD)
+#undef SPH_FIT_DERIVED_FIELD
+  }
+
+  // After a swap with a reordering buffer: takes back the derived fields, so that only one of the two
+  // states ever holds them (the memory estimate below counts them once).
+  void take_derived(ParticleState& other) {
+#define SPH_TAKE_DERIVED_FIELD(type, name) name.swap(other.name);
+    SPH_DERIVED_FIELDS(SPH_TAKE_DERIVED_FIELD)
+#undef SPH_TAKE_DERIVED_FIELD
   }
 
   void append(const Spawn& s) {
@@ -75,22 +93,25 @@ struct ParticleState {
   }
 
   ParticleView view() {
-    return ParticleView{int32_t(size()), pos.data(),          vel.data(),      vel_force.data(),
-                        acc.data(),      xsph_dv.data(),      density.data(),  near_density.data(),
-                        pressure.data(), near_pressure.data(), age.data(),     fluid.data(),
-                        id.data(),       pos_start.data(),     inv_density.data(), pressure_rho2.data(),
-                        near_pressure_rho2.data()};
+    return ParticleView{int32_t(size()),      pos.data(),           vel.data(),      vel_force.data(),
+                        acc.data(),           xsph_dv.data(),       density.data(),  near_density.data(),
+                        pressure.data(),      near_pressure.data(), age.data(),      fluid.data(),
+                        id.data(),            pos_start.data(),     pos_mass.data(), vel_inv_rho.data(),
+                        pressure_rho2.data(), near_pressure_rho2.data()};
   }
 };
 
 // Bytes of memory one particle needs at peak, used to refuse particle counts that cannot fit before
-// allocating anything. The fields above take 97 bytes and the derived ones 12; the state, its reorder
-// copy, the downloaded copy, the grid (sort records, keys, block tables) and the CPU builds' neighbour
-// lists (64 slots at the default 32 neighbours) make about seven times the 97. Measured peak resident
-// size of scenes/dam_break.json (/usr/bin/time -v, 5 steps) at 128,000 particles: 624 bytes per particle
-// on cpu, 718 on host (599 and 684 per added particle from 16k), before the derived fields were added.
+// allocating anything. The fields above take 97 bytes and the derived ones 40 (held by one state only:
+// take_derived); the state, its reorder copy, the downloaded copy, the grid (sort records, keys, block
+// tables) and the CPU builds' neighbour lists (64 slots at the default 32 neighbours) make about seven
+// times the 97. Measured peak resident size of scenes/dam_break.json (/usr/bin/time -v, 5 steps) at
+// 128,000 particles: 624 bytes per particle on cpu, 718 on host (599 and 684 per added particle from 16k),
+// before the derived fields were added; with them (issue 11, float4 packing) 696 on cpu and 792 on host
+// (656 and 751 per added particle), 3 bytes more than with the 12 bytes of derived fields before (688 and
+// 788). The estimate, 719 bytes, is 3% above cpu's peak and 9% below host's.
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
-constexpr std::size_t kDerivedFieldBytes = 3 * sizeof(float);
+constexpr std::size_t kDerivedFieldBytes = 2 * sizeof(Vec4) + 2 * sizeof(float);
 constexpr std::size_t kBytesPerParticle = 7 * kParticleFieldBytes + kDerivedFieldBytes;
 
 }  // namespace sph

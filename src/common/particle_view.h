@@ -25,11 +25,18 @@ struct ParticleView {
   uint8_t* fluid;       // index into SimConstants::fluids
   int32_t* id;          // stable particle identity, survives reordering
   Vec3* pos_start;      // position at the start of the step: boundaries test the segment moved (boundaries.h)
-  // Derived by the pressure phase for the forces (SPH_DERIVED_FIELDS in particle_state.h):
-  float* inv_density;         // 1 / rho [m^3/kg]
-  float* pressure_rho2;       // P / rho^2 [m^5/(kg s^2)]
-  float* near_pressure_rho2;  // P_near / rho^2, 0 without near pressure
+  // Derived for the neighbour loops (SPH_DERIVED_FIELDS in particle_state.h), 16-byte records a GPU loads at once:
+  Vec4* pos_mass;             // by the grid phase: x, y, z [m] and the fluid's mass [kg] (pack_position)
+  Vec4* vel_inv_rho;          // by the pressure phase: vel_force [m/s] and 1 / rho [m^3/kg]
+  float* pressure_rho2;       // by the pressure phase: P / rho^2 [m^5/(kg s^2)]
+  float* near_pressure_rho2;  // by the pressure phase: P_near / rho^2, 0 without near pressure
 };
+
+// The grid phase's part of the derived fields, after its reorder: particle i's position with its mass
+// (the same float as c.fluids[fluid].mass, so sums keep their bits).
+SPH_HD inline void pack_position(const SimConstants& c, const ParticleView& p, int32_t i) {
+  p.pos_mass[i] = with_w(p.pos[i], c.fluids[p.fluid[i]].mass);
+}
 
 // The neighbour grid of the current particle order (grid.h, grid_build.h); arrays owned by the back end.
 struct GridView {

@@ -85,6 +85,10 @@ void CpuBackend::build_grid() {
     sorted_.copy_particle(std::size_t(j), s_, std::size_t(r.index));
   }
   std::swap(s_, sorted_);
+  s_.take_derived(sorted_);
+  s_.fit_derived();
+  const ParticleView p = s_.view();
+  for (int32_t j = 0; j < n; ++j) pack_position(c_, p, j);  // the neighbour loops' position and mass records
 
   particle_block_.resize(std::size_t(n));
   block_begin_.clear();

@@ -119,11 +119,19 @@ struct DeviceArrays {
   static constexpr std::size_t kBytesPerParticle = 2 * kParticleFieldBytes + kDerivedFieldBytes;
 
   // Sizes the derived fields (SPH_DERIVED_FIELDS) to the particle count; their values are left to the
-  // pressure phase, which writes them before every use.
+  // grid phase's packing and the pressure phase, which write them before every use.
   void fit_derived() {
 #define SPH_FIT_DERIVED_FIELD(type, name) name.resize(size());
     SPH_DERIVED_FIELDS(SPH_FIT_DERIVED_FIELD)
 #undef SPH_FIT_DERIVED_FIELD
+  }
+
+  // After a swap with the reordering buffer: takes back the derived fields, so that only one of the two
+  // ever holds them (kBytesPerParticle counts them once).
+  void take_derived(DeviceArrays& other) {
+#define SPH_TAKE_DERIVED_FIELD(type, name) name.swap(other.name);
+    SPH_DERIVED_FIELDS(SPH_TAKE_DERIVED_FIELD)
+#undef SPH_TAKE_DERIVED_FIELD
   }
 
   // Calls f(device_field, other_field) for every field of the list in particle_state.h (not the derived
@@ -177,7 +185,8 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(fluid.data()),
                         thrust::raw_pointer_cast(id.data()),
                         thrust::raw_pointer_cast(pos_start.data()),
-                        thrust::raw_pointer_cast(inv_density.data()),
+                        thrust::raw_pointer_cast(pos_mass.data()),
+                        thrust::raw_pointer_cast(vel_inv_rho.data()),
                         thrust::raw_pointer_cast(pressure_rho2.data()),
                         thrust::raw_pointer_cast(near_pressure_rho2.data())};
   }

@@ -70,6 +70,13 @@ struct DensityFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { density_with<kSummation>(*c, g, p, i, dt); }
 };
 
+// The grid phase's packed position and mass records (pack_position), after the reorder.
+struct PackPositionFn {
+  ConstantsRef c;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const { pack_position(*c, p, i); }
+};
+
 struct PressureFn {
   ConstantsRef c;
   ParticleView p;
@@ -409,8 +416,14 @@ class DeviceBackend final : public Backend {
 #endif
   }
 
-  // Sort by (cell key, id) and build the block tables (device_grid.h), moving every array into that order.
-  void build_grid() { grid_.build(c_, d_, sorted_, with_temporaries(temporary_)); }
+  // Sort by (cell key, id) and build the block tables (device_grid.h), moving every array into that order;
+  // then the neighbour loops' position and mass records in that order.
+  void build_grid() {
+    grid_.build(c_, d_, sorted_, with_temporaries(temporary_));
+    d_.take_derived(sorted_);  // the reorder and the compaction carry only the fields the loops derive theirs from
+    d_.fit_derived();
+    launch(n(), PackPositionFn{constants(), d_.view()});
+  }
 
   void density(float dt) {
     if (c_.density == DensityMethod::Summation)
@@ -418,10 +431,7 @@ class DeviceBackend final : public Backend {
     else
       launch(n(), DensityFn<false>{constants(), grid_view(), d_.view(), dt});
   }
-  void pressure() {
-    d_.fit_derived();  // the reorder and the compaction carry only the fields the pressure phase reads
-    launch(n(), PressureFn{constants(), d_.view()});
-  }
+  void pressure() { launch(n(), PressureFn{constants(), d_.view()}); }
   void forces() {
     with_force_model(c_, [&](auto model) { launch(n(), ForcesFn<decltype(model)>{constants(), grid_view(), d_.view()}); });
   }
@@ -444,6 +454,7 @@ class DeviceBackend final : public Backend {
     sorted_.resize(std::size_t(count));
     launch(count, GatherFn{d_.view(), sorted_.view(), thrust::raw_pointer_cast(keep_.data()), kept});
     std::swap(d_, sorted_);
+    d_.take_derived(sorted_);
     recycled_ = true;
 #else
     const auto end = thrust::copy_if(with_temporaries(temporary_), thrust::counting_iterator<int32_t>(0),
@@ -453,6 +464,7 @@ class DeviceBackend final : public Backend {
     keep_.resize(std::size_t(kept));
     sorted_.gather_from(d_, keep_);
     std::swap(d_, sorted_);
+    d_.take_derived(sorted_);
 #endif
   }
 
