@@ -121,9 +121,10 @@ class DeviceGrid {
   static constexpr std::size_t kBytesPerParticle =
       2 * sizeof(uint64_t) + 4 * sizeof(int32_t) + (kBlockTable + kBlockNeighbours) * sizeof(int32_t) / 8;
 
-  // The first capacity of the tables: n / kFirstParticlesPerBlock blocks, at least kFirstBlocks. When a
-  // count read back comes within an eighth of the capacity, the capacity grows to 1.5 times the larger of
-  // the two: a fluid that spreads a little every step regrows rarely.
+  // The first capacity of the tables: n / kFirstParticlesPerBlock blocks, at least kFirstBlocks (at most
+  // n). When a count read back comes within an eighth of the capacity, the capacity grows to 1.5 times the
+  // larger of the two: a fluid that spreads a little every step regrows rarely, and within one step it
+  // may spread into an eighth more blocks before any is searched without tables.
   static constexpr int32_t kFirstBlocks = 16, kFirstParticlesPerBlock = 64;
 
   DeviceGrid() : fixed_capacity_(fixed_capacity_from_environment()) {}
@@ -204,7 +205,8 @@ class DeviceGrid {
     return int32_t(v);
   }
 
-  // Sizes the tables for capacity_ blocks (kFirstBlocks above); never shrinks them.
+  // Sizes the tables for capacity_ blocks (kFirstBlocks above), never for more blocks than particles
+  // (n: this build's particle count); never shrinks them.
   void fit_capacity(int32_t n, int32_t blocks_seen) {
     int64_t wanted = capacity_;
     if (fixed_capacity_ >= 0) {
@@ -213,7 +215,8 @@ class DeviceGrid {
       wanted = std::min<int64_t>(n, std::max<int64_t>(kFirstBlocks, n / kFirstParticlesPerBlock));
       sized_ = true;
     } else if (8 * int64_t(blocks_seen) > 7 * int64_t(capacity_)) {
-      wanted = std::min<int64_t>(INT32_MAX, 3 * std::max<int64_t>(capacity_, blocks_seen) / 2);
+      wanted = std::min<int64_t>(n, 3 * std::max<int64_t>(capacity_, blocks_seen) / 2 + 1);
+      if (wanted <= capacity_) return;
       ++device_counters().table_growths;
     }
     if (wanted == capacity_) return;
