@@ -8,7 +8,10 @@
 // keeps neighbouring blocks close in memory whatever the fluid's shape (issue 11, items 7 and 9).
 // Each occupied block holds a dense table of its 256 cells' first particles and the indices of its 26
 // neighbour blocks, so a search finds every row of up to 5 cells as one or two index ranges without any
-// lookup: grid_build.h builds the tables, the back ends only schedule the loops.
+// lookup: grid_build.h builds the tables, the back ends only schedule the loops. The device build keeps
+// tables for as many blocks as an earlier step's summary reported, so that it never waits for this step's
+// count (device_grid.h); blocks past that capacity, when the fluid spread into more blocks within a step,
+// are searched by binary search over the block codes and the block's keys instead: the same ranges, slower.
 #pragma once
 
 #include <cstdint>
@@ -101,6 +104,63 @@ SPH_HD inline T read_only(const T* p) {
 #endif
 }
 
+// The index of the block with Morton code `code` among the sorted codes[0, blocks), or -1.
+SPH_HD inline int32_t find_block(const uint64_t* codes, int32_t blocks, uint64_t code) {
+  int32_t lo = 0, hi = blocks;
+  while (lo < hi) {
+    const int32_t mid = lo + (hi - lo) / 2;
+    if (codes[mid] < code)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < blocks && codes[lo] == code ? lo : -1;
+}
+
+// The block at block coordinates (x, y, z), or -1 where no particle is or they leave the key range.
+// codes: every block's Morton code, ascending.
+SPH_HD inline int32_t block_at(const uint64_t* codes, int32_t blocks, int32_t x, int32_t y, int32_t z) {
+  constexpr int32_t kLast = (1 << kBlockBits) - 1;
+  const bool inside = x >= 0 && y >= 0 && z >= 0 && x <= kLast && y <= kLast && z <= kLast;
+  return inside ? find_block(codes, blocks, block_key(x, y, z)) : -1;
+}
+
+// The block at offset (dx, dy, dz) in (-1..1)^3 of block b, as block_at: one entry of find_block_neighbours.
+SPH_HD inline int32_t neighbour_block(const uint64_t* codes, int32_t blocks, int32_t b, int32_t dx, int32_t dy, int32_t dz) {
+  if (dx == 0 && dy == 0 && dz == 0) return b;
+  const uint64_t code = codes[b];
+  return block_at(codes, blocks, int32_t(compact_bits3(code)) + dx, int32_t(compact_bits3(code >> 1)) + dy,
+                  int32_t(compact_bits3(code >> 2)) + dz);
+}
+
+// out[27]: the blocks at offsets (dx, dy, dz) in (-1..1)^3 of block b (z slowest, x fastest), as
+// neighbour_block, with b's coordinates decoded once: a block's row of block_neighbours.
+SPH_HD inline void find_block_neighbours(const uint64_t* codes, int32_t blocks, int32_t b, int32_t* out) {
+  const uint64_t code = codes[b];
+  const int32_t bx = int32_t(compact_bits3(code)), by = int32_t(compact_bits3(code >> 1)),
+                bz = int32_t(compact_bits3(code >> 2));
+  int32_t k = 0;
+  for (int32_t dz = -1; dz <= 1; ++dz)
+    for (int32_t dy = -1; dy <= 1; ++dy)
+      for (int32_t dx = -1; dx <= 1; ++dx, ++k)
+        out[k] = dx == 0 && dy == 0 && dz == 0 ? b : block_at(codes, blocks, bx + dx, by + dy, bz + dz);
+}
+
+// The first particle of block `block` whose cell inside the block is `local` or after it, else the block's
+// end: the entry cell_start[local] of its table (grid_build.h, fill_block_table), found by binary search
+// over its sorted keys instead, for a block without a table (GridView::block_capacity).
+SPH_HD inline int32_t first_in_block_from(const GridView& grid, int32_t block, int32_t local) {
+  int32_t lo = grid.block_begin[block], hi = grid.block_begin[block + 1];
+  while (lo < hi) {
+    const int32_t mid = lo + (hi - lo) / 2;
+    if (int32_t(read_only(grid.key + mid) & kLocalMask) < local)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
 // The index ranges of particles in the 5 x 5 x 5 cells around particle a's cell (its own included): one
 // or two ranges per row of 5 cells, in one fixed order (rows by z, then y, then x ascending), so that
 // every sum over neighbours has the same bits on every back end. Two schedules of the same ranges, both
@@ -126,14 +186,24 @@ SPH_HD inline void candidate_ranges_by_counter(const GridView& grid, int32_t a, 
     const int32_t y = ((here >> kBlockXBits) & (kBlockY - 1)) + r % kSide - kGridReach;
     const int32_t bz = z < 0 ? -1 : (z >= kBlockZ ? 1 : 0);
     const int32_t by = y < 0 ? -1 : (y >= kBlockY ? 1 : 0);
-    const int32_t block = grid.block_neighbours[int64_t(read_only(grid.particle_block + a)) * kBlockNeighbours +
-                                                (bz + 1) * 9 + (by + 1) * 3 + (bx + 1)];
-    if (block < 0) continue;
+    const int32_t own = read_only(grid.particle_block + a);
+    const int32_t block = own < grid.block_capacity
+                              ? grid.block_neighbours[int64_t(own) * kBlockNeighbours + (bz + 1) * 9 + (by + 1) * 3 + (bx + 1)]
+                              : neighbour_block(grid.block_code, *grid.block_count, own, bx, by, bz);
     const int32_t from = lx - kGridReach - kBlockX * bx > 0 ? lx - kGridReach - kBlockX * bx : 0;
     const int32_t to = lx + kGridReach - kBlockX * bx < kBlockX - 1 ? lx + kGridReach - kBlockX * bx : kBlockX - 1;
-    const int32_t* start = grid.cell_start + int64_t(block) * kBlockTable + (z - kBlockZ * bz) * (kBlockX * kBlockY) +
-                           (y - kBlockY * by) * kBlockX;
-    f(start[from], start[to + 1]);
+    const int32_t row = (z - kBlockZ * bz) * (kBlockX * kBlockY) + (y - kBlockY * by) * kBlockX;
+    int32_t begin, end;
+    if (uint32_t(block) < uint32_t(grid.block_capacity)) {  // -1 (no block) wraps above
+      const int32_t* start = grid.cell_start + int64_t(block) * kBlockTable + row;
+      begin = start[from];
+      end = start[to + 1];
+    } else {
+      if (block < 0) continue;
+      begin = first_in_block_from(grid, block, row + from);
+      end = first_in_block_from(grid, block, row + to + 1);
+    }
+    f(begin, end);
   }
 }
 
@@ -150,7 +220,14 @@ SPH_HD inline void candidate_ranges_nested(const GridView& grid, int32_t a, F&& 
     part_from[parts] = lx - kGridReach - kBlockX * bx > 0 ? lx - kGridReach - kBlockX * bx : 0;
     part_to[parts] = (lx + kGridReach - kBlockX * bx < kBlockX - 1 ? lx + kGridReach - kBlockX * bx : kBlockX - 1) + 1;
   }
-  const int32_t* around = grid.block_neighbours + int64_t(grid.particle_block[a]) * kBlockNeighbours;
+  const uint32_t capacity = uint32_t(grid.block_capacity);  // held: f's stores may alias grid
+  const int32_t own = grid.particle_block[a];
+  const int32_t* around = grid.block_neighbours + int64_t(own) * kBlockNeighbours;
+  int32_t searched[kBlockNeighbours];
+  if (uint32_t(own) >= capacity) {
+    find_block_neighbours(grid.block_code, *grid.block_count, own, searched);
+    around = searched;
+  }
   for (int32_t z = lz - kGridReach; z <= lz + kGridReach; ++z) {
     const int32_t bz = z < 0 ? -1 : (z >= kBlockZ ? 1 : 0);
     const int32_t z_offset = (z - kBlockZ * bz) * (kBlockX * kBlockY);
@@ -160,9 +237,17 @@ SPH_HD inline void candidate_ranges_nested(const GridView& grid, int32_t a, F&& 
       const int32_t* row_blocks = around + (bz + 1) * 9 + (by + 1) * 3;
       for (int32_t k = 0; k < parts; ++k) {
         const int32_t block = row_blocks[part_bx[k]];
-        if (block < 0) continue;
-        const int32_t* start = grid.cell_start + int64_t(block) * kBlockTable + row;
-        f(start[part_from[k]], start[part_to[k]]);
+        int32_t begin, end;
+        if (uint32_t(block) < capacity) {  // one test on the common path: -1 (no block) wraps above
+          const int32_t* start = grid.cell_start + int64_t(block) * kBlockTable + row;
+          begin = start[part_from[k]];
+          end = start[part_to[k]];
+        } else {
+          if (block < 0) continue;
+          begin = first_in_block_from(grid, block, row + part_from[k]);
+          end = first_in_block_from(grid, block, row + part_to[k]);
+        }
+        f(begin, end);
       }
     }
   }

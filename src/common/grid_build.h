@@ -43,34 +43,4 @@ SPH_HD inline void fill_block_table(const uint64_t* key, int32_t begin, int32_t 
   table[kCellsPerBlock] = end;
 }
 
-// The index of the block with Morton code `code` among the sorted codes[0, blocks), or -1.
-SPH_HD inline int32_t find_block(const uint64_t* codes, int32_t blocks, uint64_t code) {
-  int32_t lo = 0, hi = blocks;
-  while (lo < hi) {
-    const int32_t mid = lo + (hi - lo) / 2;
-    if (codes[mid] < code)
-      lo = mid + 1;
-    else
-      hi = mid;
-  }
-  return lo < blocks && codes[lo] == code ? lo : -1;
-}
-
-// out[27]: the blocks at offsets (dx, dy, dz) in (-1..1)^3 of block b (z slowest, x fastest), -1 where no
-// particle is or the offset leaves the key range. codes: every block's Morton code, ascending.
-SPH_HD inline void find_block_neighbours(const uint64_t* codes, int32_t blocks, int32_t b, int32_t* out) {
-  const uint64_t code = codes[b];
-  const int32_t bx = int32_t(compact_bits3(code)), by = int32_t(compact_bits3(code >> 1)),
-                bz = int32_t(compact_bits3(code >> 2));
-  constexpr int32_t kLast = (1 << kBlockBits) - 1;
-  int32_t k = 0;
-  for (int32_t dz = -1; dz <= 1; ++dz)
-    for (int32_t dy = -1; dy <= 1; ++dy)
-      for (int32_t dx = -1; dx <= 1; ++dx, ++k) {
-        const int32_t x = bx + dx, y = by + dy, z = bz + dz;
-        const bool inside = x >= 0 && y >= 0 && z >= 0 && x <= kLast && y <= kLast && z <= kLast;
-        out[k] = !inside ? -1 : (dx == 0 && dy == 0 && dz == 0 ? b : find_block(codes, blocks, block_key(x, y, z)));
-      }
-}
-
 }  // namespace sph

@@ -41,10 +41,13 @@ struct RowsAround {
   const int32_t* part[kRowsAround][3];
 };
 
-inline RowsAround rows_around(const GridView& grid, int32_t block, int32_t ly, int32_t lz) {
+// False where the block or one around it has no tables (GridView::block_capacity on the device back
+// end's host build): its particles are then searched one by one.
+inline bool rows_around(const GridView& grid, int32_t block, int32_t ly, int32_t lz, RowsAround& rows) {
   static constexpr int32_t kEmpty[kBlockX + 1] = {};
+  const uint32_t capacity = uint32_t(grid.block_capacity);
+  if (uint32_t(block) >= capacity) return false;
   const int32_t* around = grid.block_neighbours + int64_t(block) * kBlockNeighbours;
-  RowsAround rows;
   int32_t t = 0;
   for (int32_t z = lz - kGridReach; z <= lz + kGridReach; ++z) {
     const int32_t bz = z < 0 ? -1 : (z >= kBlockZ ? 1 : 0);
@@ -53,11 +56,12 @@ inline RowsAround rows_around(const GridView& grid, int32_t block, int32_t ly, i
       const int32_t row = ((z - kBlockZ * bz) * kBlockY + (y - kBlockY * by)) * kBlockX;
       for (int32_t bx = -1; bx <= 1; ++bx) {
         const int32_t b = around[(bz + 1) * 9 + (by + 1) * 3 + (bx + 1)];
+        if (b >= 0 && uint32_t(b) >= capacity) return false;
         rows.part[t][bx + 1] = b >= 0 ? grid.cell_start + int64_t(b) * kBlockTable + row : kEmpty;
       }
     }
   }
-  return rows;
+  return true;
 }
 
 // Copies the index range [begin, end) to cand at k (see kGatherWidth); false when it does not fit.
@@ -138,14 +142,22 @@ inline void filter_candidates_branchy(const Vec3* pos, Vec3 xa, float h2, const 
 template <bool kBranchFree>
 inline void list_row_neighbours(const GridView& grid, const Vec3* pos, float h2, int32_t block, int32_t row,
                                 int32_t* lists, int32_t* counts, int32_t capacity) {
-  const int32_t* cells = grid.cell_start + int64_t(block) * kBlockTable + row * kBlockX;
-  const int32_t begin = cells[0], end = cells[kBlockX];
+  int32_t begin, end;
+  if (uint32_t(block) < uint32_t(grid.block_capacity)) {
+    const int32_t* cells = grid.cell_start + int64_t(block) * kBlockTable + row * kBlockX;
+    begin = cells[0];
+    end = cells[kBlockX];
+  } else {
+    begin = first_in_block_from(grid, block, row * kBlockX);
+    end = first_in_block_from(grid, block, (row + 1) * kBlockX);
+  }
   if (begin == end) return;
-  const RowsAround rows = rows_around(grid, block, row % kBlockY, row / kBlockY);
+  RowsAround rows;
+  const bool tables = rows_around(grid, block, row % kBlockY, row / kBlockY, rows);
   int32_t cand[kGatherCapacity + kGatherWidth];
   for (int32_t a = begin; a < end; ++a) {
     int32_t* list = lists + int64_t(a) * (capacity + kNeighbourListPad);
-    const int32_t k = gather_candidates(rows, int32_t(grid.key[a] & uint64_t(kBlockX - 1)), cand);
+    const int32_t k = tables ? gather_candidates(rows, int32_t(grid.key[a] & uint64_t(kBlockX - 1)), cand) : -1;
     if (k < 0) {
       counts[a] = list_neighbours<kBranchFree>(grid, pos, a, h2, list, capacity);
       continue;

@@ -51,6 +51,12 @@ struct GridView {
   const int32_t* neighbour_list;
   const int32_t* neighbour_count;
   int32_t list_capacity;
+  // Blocks from block_capacity on have no tables (the device build sizes them from an earlier step's block
+  // count, grid.h): a search finds their neighbours and cell ranges by binary search over these.
+  const int32_t* block_begin;  // blocks + 1: each block's first particle, then n
+  const uint64_t* block_code;  // blocks: each block's Morton code, ascending
+  const int32_t* block_count;  // one value: blocks (device memory on the device build)
+  int32_t block_capacity;      // blocks [0, block_capacity) have cell_start and block_neighbours entries
 };
 
 }  // namespace sph

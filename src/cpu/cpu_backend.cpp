@@ -100,7 +100,8 @@ void CpuBackend::build_grid() {
     }
     particle_block_[std::size_t(j)] = int32_t(block_begin_.size()) - 1;
   }
-  const int32_t blocks = int32_t(block_code_.size());
+  blocks_ = int32_t(block_code_.size());
+  const int32_t blocks = blocks_;
   block_begin_.push_back(n);
   cell_start_.resize(std::size_t(blocks) * kBlockTable);
   block_neighbours_.resize(std::size_t(blocks) * kBlockNeighbours);

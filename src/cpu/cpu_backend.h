@@ -44,7 +44,11 @@ class CpuBackend final : public Backend {
                     cell_start_.data(),
                     list_capacity_ > 0 ? neighbour_list_.data() : nullptr,
                     neighbour_count_.data(),
-                    list_capacity_};
+                    list_capacity_,
+                    block_begin_.data(),
+                    block_code_.data(),
+                    &blocks_,
+                    blocks_};  // a table for every block
   }
   const SimConstants& constants() const { return c_; }
   ParticleState& state() { return s_; }
@@ -62,6 +66,7 @@ class CpuBackend final : public Backend {
   std::vector<SortRecord> sort_records_;
   std::vector<uint64_t> key_, block_code_;
   std::vector<int32_t> particle_block_, block_begin_, block_neighbours_, cell_start_;
+  int32_t blocks_ = 0;  // occupied blocks at the last grid build
   std::vector<int32_t> neighbour_list_, neighbour_count_;
   int32_t list_capacity_ = 0;  // neighbour_list_capacity(c_) at the last grid build
   NeighbourListChoice list_choice_;

@@ -6,10 +6,11 @@
 // nvcc; the functors carry only views, scalars and a ConstantsRef.
 //
 // Under nvcc a step is asynchronous (issue 11, item 6): every phase is enqueued on one stream without
-// waiting, and the step ends with one reduction of the diagnostics (and of the recycled count) whose
-// result is copied to the host; the host waits for it once, when it needs it (the next step, size(),
-// diagnose(), emit(), download()). Phase times come from CUDA events (device_timers.h). Under g++ every
-// loop finishes before it returns, as before.
+// waiting, and the step ends with one reduction of the diagnostics whose result, with the recycled count
+// and the grid's block count, is copied to the host: the step's one read; the host waits for it once,
+// when it needs it (the next step, size(), diagnose(), emit(), download()). Phase times come from CUDA
+// events (device_timers.h). Under g++ every loop finishes before it returns, and the step ends with the
+// same summary, so that the host build runs (and tests) the same logic.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -168,11 +169,13 @@ struct DiagCombineFn {
   }
 };
 
-// What a step leaves for the host, read in one copy (device_readback.h): the diagnostics and, when the
-// step recycled on cuda, how many particles it kept.
+// What a step leaves for the host, read in one copy (device_readback.h): the diagnostics, how many
+// particles it kept when it recycled on cuda, and how many blocks its grid has (device_grid.h: the tables'
+// capacity grows from it).
 struct StepSummary {
   Diag diag;
   int32_t kept;
+  int32_t blocks;
 };
 
 // ---- the back end -----------------------------------------------------------------------------------------
@@ -291,16 +294,8 @@ class DeviceBackend final : public Backend {
   Diagnostics diagnose() override {
     settle();
     if (!diag_current_) {
-#if defined(__CUDACC__)
       run_phase(name_, "diagnostics", [&] { enqueue_summary(nullptr); }, false);
       settle();
-#else
-      result_.diag = thrust::transform_reduce(with_temporaries(temporary_), thrust::counting_iterator<int32_t>(0),
-                                              thrust::counting_iterator<int32_t>(n()), DiagOfFn{d_.view(), nullptr},
-                                              Diag::none(), DiagCombineFn{});
-      diag_current_ = true;
-      spawn_diag_ = Diag::none();
-#endif
     }
     const Diag r = DiagCombineFn{}(result_.diag, spawn_diag_);
     Diagnostics out;
@@ -351,22 +346,26 @@ class DeviceBackend final : public Backend {
     return r;
   }
 
-#if defined(__CUDACC__)
   // Enqueues the diagnostics of the particles (before *kept when kept is set) into the device's summary,
   // and the summary's copy to the host; settle() reads it.
   void enqueue_summary(const int32_t* kept) {
     StepSummary* s = summary();
+#if defined(__CUDACC__)
     const auto diag_in = thrust::make_transform_iterator(thrust::counting_iterator<int32_t>(0), DiagOfFn{d_.view(), kept});
     cub_temporaries(temporary_, [&](void* t, std::size_t& bytes) {
       return cub::DeviceReduce::Reduce(t, bytes, diag_in, &s->diag, n(), DiagCombineFn{}, Diag::none(), kStream);
     });
+#else
+    s->diag = thrust::transform_reduce(with_temporaries(temporary_), thrust::counting_iterator<int32_t>(0),
+                                       thrust::counting_iterator<int32_t>(n()), DiagOfFn{d_.view(), kept},
+                                       Diag::none(), DiagCombineFn{});
+#endif
     readback_.read_from(s);
     pending_ = true;
     last_phase_ = "diagnostics";
     diag_current_ = true;
     spawn_diag_ = Diag::none();
   }
-#endif
 
   // Waits for the enqueued step (the one synchronisation of a step, naming the step if a kernel faulted),
   // then takes its summary and phase times. Const because size() needs the count a recycling step left.
@@ -406,20 +405,17 @@ class DeviceBackend final : public Backend {
     });
   }
 
-  // After enqueued work that moved the particles: on cuda the summary (diagnostics and, after recycling,
-  // the kept count) and its one copy to the host; on host the diagnostics are simply out of date.
+  // After enqueued work that moved the particles: the summary (diagnostics, the kept count after recycling
+  // on cuda, the block count) and its one copy to the host.
   void end_of_work() {
-#if defined(__CUDACC__)
     run_phase(name_, "diagnostics", [&] { enqueue_summary(recycled_ ? &summary()->kept : nullptr); }, false);
-#else
-    diag_current_ = false;
-#endif
   }
 
   // Sort by (cell key, id) and build the block tables (device_grid.h), moving every array into that order;
-  // then the neighbour loops' position and mass records in that order.
+  // then the neighbour loops' position and mass records in that order; the tables' capacity follows the
+  // block count of the summary read last.
   void build_grid() {
-    grid_.build(c_, d_, sorted_, with_temporaries(temporary_));
+    grid_.build(c_, d_, sorted_, with_temporaries(temporary_), &summary()->blocks, result_.blocks);
     d_.take_derived(sorted_);  // the reorder and the compaction carry only the fields the loops derive theirs from
     d_.fit_derived();
     launch(n(), PackPositionFn{constants(), d_.view()});
@@ -483,7 +479,7 @@ class DeviceBackend final : public Backend {
   // are const but may have to wait for the step that was enqueued last.
   DeviceVector<StepSummary> summary_;
   PinnedReadback<StepSummary> readback_;
-  mutable StepSummary result_{Diag::none(), 0};  // the summary read last
+  mutable StepSummary result_{Diag::none(), 0, 0};  // the summary read last
   mutable bool pending_ = false;                 // a summary is enqueued and not read yet
   mutable bool recycled_ = false;                // the pending step recycled: its count is in the summary
   mutable int64_t trim_to_ = -1;                 // particles to keep once settled, -1: all

@@ -1,7 +1,7 @@
 // The one small device-to-host read of a step (issue 11, item 6): a value the device writes, copied into
 // page-locked host memory (cudaMallocHost) by an asynchronous copy enqueued behind the step's work, and
 // read after the step has been waited for (device_faults.h, wait_for_step). Under g++ the device system's
-// memory is host memory: the value is read directly.
+// memory is host memory: the value is read directly. Either way each read is counted (device_reads.h).
 #pragma once
 
 #if defined(__CUDACC__)
@@ -11,6 +11,7 @@
 #endif
 
 #include "device_launch.h"
+#include "device_reads.h"
 
 namespace sph {
 namespace SPH_DEVICE_NS {
@@ -32,6 +33,7 @@ class PinnedReadback {
   // Enqueues the copy of *device (device memory); value() holds it once the stream has been waited for.
   void read_from(const T* device) {
     CUDA_CHECK(cudaMemcpyAsync(host_, device, sizeof(T), cudaMemcpyDeviceToHost, kStream));
+    ++device_counters().reads;
   }
   const T& value() const { return *host_; }
 
@@ -44,7 +46,10 @@ class PinnedReadback {
 template <class T>
 class PinnedReadback {
  public:
-  void read_from(const T* device) { value_ = *device; }
+  void read_from(const T* device) {
+    value_ = *device;
+    ++device_counters().reads;
+  }
   const T& value() const { return value_; }
 
  private:
