@@ -51,7 +51,8 @@ void compute_density(FormulaCloud& cloud) {
 std::vector<float> lambdas(FormulaCloud& cloud, const sph::PbfParams& params) {
   sph::ParticleView p = cloud.view();
   std::vector<float> out(std::size_t(cloud.size()));
-  for (int32_t i = 0; i < cloud.size(); ++i) out[std::size_t(i)] = sph::pbf_lambda(cloud.c(), cloud.grid(), p, params, i);
+  for (int32_t i = 0; i < cloud.size(); ++i)
+    out[std::size_t(i)] = sph::pbf_lambda(cloud.c(), cloud.grid(), p, params, i);
   return out;
 }
 
@@ -194,7 +195,8 @@ TEST_CASE("PBF s_corr is negative, -k at dq and zero at and beyond h", "[pbf]") 
       previous = s;
     }
     // A neighbour at the rest spacing (about h / 2) gets about 5% of k: (0.75 / 0.96)^12.
-    CHECK(sph::pbf_scorr(k, params, 0.25f * hf * hf) == Approx(-params.scorr_k * std::pow(0.75 / 0.96, 12)).epsilon(1e-4));
+    const double at_half_h = -params.scorr_k * std::pow(0.75 / 0.96, 12);
+    CHECK(sph::pbf_scorr(k, params, 0.25f * hf * hf) == Approx(at_half_h).epsilon(1e-4));
     for (float r : {hf, 1.0001f * hf, 2.0f * hf}) CHECK(sph::pbf_scorr(k, params, r * r) == 0.0f);
   }
 }

@@ -21,7 +21,7 @@ namespace sph {
 // Below this fraction of (m_i sigma / h)^2, sigma = 8 / (pi h^3), the denominator of alpha counts as zero: a
 // particle with no neighbour in reach (or only neighbours at the rim of the support) gets alpha = 0 and so no
 // pressure, instead of a division by zero. (m_i sigma / h is the size of one m grad W term of the cubic
-// spline; in the bulk of a lattice with h = 2 d the denominator is some tens of those squared, so only
+// spline; in the bulk of a lattice with h = 1.95 d the denominator is about 15 of those squared, so only
 // isolated particles and those with neighbours only at the rim of the support are affected.)
 constexpr float kDfsphAlphaEps = 1e-6f;
 

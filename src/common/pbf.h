@@ -2,6 +2,7 @@
 // position-based pressure solver). The solver phases (issue 12) call them on the predicted positions x*, held
 // in p.pos while the solver iterates; they read the particle and grid views only, and the arrays PBF adds
 // (lambda, vorticity) are passed as raw pointers, not ParticleState fields. Each returns its value.
+// The paper's text is not among the seeds: its equation numbers below are recalled, to check against it.
 //
 // Kernels as the paper: Poly6 for densities and weights, Spiky for gradients (kernels.h, support h). The
 // density rho_i = sum_j m_j W_poly6 is the existing summation (density.h, density_of with Summation), read
@@ -32,9 +33,10 @@ struct PbfParams {
   float scorr_k = 0.1f;
   int32_t scorr_n = 4;
   float scorr_dq = 0.2f;  // dq / h
-  // 1: lambda sees max(C_i, 0), a one-sided constraint (as SPlisHSPlasH's PBF): particles at a free surface,
-  // whose C < 0 only because neighbours are missing, are then not pulled together. 0: the paper's C_i. The
-  // free surface's pull makes a plain Jacobi iteration compress a resting blob (tests/test_pbf_formulas.cpp).
+  // 1: lambda sees max(C_i, 0), a one-sided constraint (as Bender et al.'s PositionBasedDynamics library):
+  // particles at a free surface, whose C < 0 only because neighbours are missing, are then not pulled
+  // together. 0: the paper's C_i. The free surface's pull makes a plain Jacobi iteration compress a resting
+  // blob (tests/test_pbf_formulas.cpp).
   int32_t clamp_expansion = 0;
   float xsph_c = 0.01f;   // XSPH viscosity c, [MM13] section 5
   float vorticity_epsilon = 0.0f;  // vorticity confinement strength [m/s] (a = eps N x omega), 0: off
@@ -45,8 +47,9 @@ SPH_HD inline float pbf_constraint(float density, float rest_density) { return d
 
 // [MM13] section 3 (eqs. 8 to 11): lambda_i = -C_i / (sum_k |grad_k C_i|^2 + epsilon), with
 // grad_j C_i = -(m_j / rho0) grad W_ij (k = j) and grad_i C_i = (1 / rho0) sum_j m_j grad W_ij (k = i).
-// C_i from p.density[i] (max(C_i, 0) with clamp_expansion). Positive under expansion (C < 0): lambda pulls neighbours in; negative under
-// compression. Returns 0 where the denominator is not positive (an isolated particle with epsilon = 0). [m^2]
+// C_i from p.density[i] (max(C_i, 0) with clamp_expansion). Positive under expansion (C < 0): lambda pulls
+// neighbours in; negative under compression. Returns 0 where the denominator is not positive (an isolated
+// particle with epsilon = 0). [m^2]
 SPH_HD inline float pbf_lambda(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                const PbfParams& params, int32_t i) {
   const KernelCoeffs& k = c.kernel;
