@@ -1,0 +1,118 @@
+// Per-particle formulas of Divergence-Free SPH [BK15] (Bender & Koschier 2015, reproduced in seed 000, whose
+// equation numbers are cited: "seed eq. N"). The solver phases (issue 12) call them in their loops over
+// particles; they read the particle and grid views only, and the arrays DFSPH adds (alpha, kappa) are passed
+// as raw pointers, so they are not ParticleState fields. Each returns its value: the phase stores it.
+//
+// Kernel: the cubic spline (kernels.h, support h) for W and grad W alike, as [BK15] (seed 3.4: the density
+// and its rate must use one kernel for the predictions and corrections to agree). Neighbours: every particle
+// within h (for_each_neighbour, the particle itself included); the particle itself, and any particle at the
+// same position, adds W but no gradient (there is no direction). Wall ghosts (mirror_walls.h) are not yet
+// included: docs/solvers_plan.md.
+//
+// Units (SI): m [kg], rho [kg/m^3], grad W [1/m^4], alpha [m^5/kg], kappa [m^2/s^2], acceleration [m/s^2].
+#pragma once
+
+#include "grid.h"
+#include "kernels.h"
+#include "params.h"
+
+namespace sph {
+
+// Below this fraction of (m_i sigma / h)^2, sigma = 8 / (pi h^3), the denominator of alpha counts as zero: a
+// particle with no neighbour in reach (or only neighbours at the rim of the support) gets alpha = 0 and so no
+// pressure, instead of a division by zero. (m_i sigma / h is the size of one m grad W term of the cubic
+// spline; in the bulk of a lattice with h = 1.95 d the denominator is about 15 of those squared, so only
+// isolated particles and those with neighbours only at the rim of the support are affected.)
+constexpr float kDfsphAlphaEps = 1e-6f;
+
+// Seed eq. 3: dt <= 0.4 d / v_max, d the particle diameter (spacing).
+constexpr float kDfsphCflFactor = 0.4f;
+
+// Seed eq. 7: rho_i = sum_j m_j W_ij with the cubic spline, the particle itself included. [kg/m^3]
+SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  float rho = 0.0f;
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3, float r2) {
+    rho += c.fluids[p.fluid[j]].mass * cubic_spline(k, sqrtf(r2));
+  });
+  return rho;
+}
+
+// Seed eq. 9 ([BK15] alpha factor): alpha_i = rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2),
+// rho_i = p.density[i] (dfsph_density). Depends on positions only: computed once per step after the grid and
+// shared by both solvers. Returns 0 where the denominator is below kDfsphAlphaEps (isolated particle). [m^5/kg]
+SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  Vec3 sum_grad{0.0f, 0.0f, 0.0f};  // sum_j m_j grad W_ij [kg/m^4]
+  float sum_grad2 = 0.0f;           // sum_j |m_j grad W_ij|^2 [kg^2/m^8]
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    if (r2 <= 0.0f) return;
+    const Vec3 g = (c.fluids[p.fluid[j]].mass * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
+    sum_grad += g;
+    sum_grad2 += length2(g);
+  });
+  const float denominator = length2(sum_grad) + sum_grad2;
+  const float scale = c.fluids[p.fluid[i]].mass * k.cubic / k.h;
+  if (denominator <= kDfsphAlphaEps * scale * scale) return 0.0f;
+  return p.density[i] / denominator;
+}
+
+// Seed eq. 18: D rho_i / Dt = sum_j m_j (v_i - v_j) . grad W_ij, with the velocities vel (the solver's
+// predicted v*, not necessarily p.vel). Positive: compression. Exact zero for a rigid translation; for a
+// rigid rotation each pair's term is zero (v_i - v_j is perpendicular to x_ij), so zero to round-off.
+// [kg/(m^3 s)]
+SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                       const Vec3* vel, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const Vec3 vi = vel[i];
+  float rate = 0.0f;
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    if (r2 <= 0.0f) return;
+    rate += c.fluids[p.fluid[j]].mass * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi - vel[j], xij);
+  });
+  return rate;
+}
+
+// Seed eq. 10: rho*_i = rho_i + dt D rho_i / Dt, the density after dt at the current velocities. [kg/m^3]
+SPH_HD inline float dfsph_predicted_density(float rho, float density_rate, float dt) {
+  return rho + dt * density_rate;
+}
+
+// Seed eq. 14, density solver: kappa_i = (rho*_i - rho0) alpha_i / dt^2. [m^2/s^2]
+// (Whether to clamp rho*_i - rho0 at 0, so that a free surface is not pulled together, is the solver's choice:
+// docs/solvers_plan.md.)
+SPH_HD inline float dfsph_density_stiffness(float predicted_density, float rest_density, float alpha, float dt) {
+  return (predicted_density - rest_density) * alpha / (dt * dt);
+}
+
+// Seed eq. 19, divergence solver: kappa^v_i = (D rho_i / Dt) alpha_i / dt. [m^2/s^2]
+SPH_HD inline float dfsph_divergence_stiffness(float density_rate, float alpha, float dt) {
+  return density_rate * alpha / dt;
+}
+
+// Seed eqs. 15-17 (the seed prints kappa_j / rho_i and drops the minus sign of eq. 16; [BK15] has both right):
+// a_i = -sum_j m_j (kappa_i / rho_i + kappa_j / rho_j) grad W_ij, kappa either stiffness, rho = p.density.
+// The solver updates v_i += dt a_i. Each pair term is antisymmetric (grad W_ji = -grad W_ij), so
+// sum_i m_i a_i = 0: the pressure solves conserve linear momentum. [m/s^2]
+SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                               const float* kappa, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const float ki = kappa[i] / p.density[i];
+  Vec3 acc{0.0f, 0.0f, 0.0f};
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    if (r2 <= 0.0f) return;
+    const float s = c.fluids[p.fluid[j]].mass * (ki + kappa[j] / p.density[j]);
+    acc -= (s * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
+  });
+  return acc;
+}
+
+// Seed eq. 3 (CFL): the largest step with dt <= factor d / v_max, d the particle spacing [m], v_max the largest
+// particle speed [m/s], capped at dt_max [s] (also when nothing moves, v_max = 0). [s]
+SPH_HD inline float dfsph_cfl_step(float spacing, float v_max, float dt_max, float factor = kDfsphCflFactor) {
+  if (!(v_max > 0.0f)) return dt_max;
+  const float dt = factor * spacing / v_max;
+  return dt < dt_max ? dt : dt_max;
+}
+
+}  // namespace sph

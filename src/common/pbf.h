@@ -1,0 +1,151 @@
+// Per-particle formulas of Position Based Fluids [MM13] (Macklin & Mueller 2013; seed 002 describes the
+// position-based pressure solver). The solver phases (issue 12) call them on the predicted positions x*, held
+// in p.pos while the solver iterates; they read the particle and grid views only, and the arrays PBF adds
+// (lambda, vorticity) are passed as raw pointers, not ParticleState fields. Each returns its value.
+// The paper's text is not among the seeds: its equation numbers below are recalled, to check against it.
+//
+// Kernels as the paper: Poly6 for densities and weights, Spiky for gradients (kernels.h, support h). The
+// density rho_i = sum_j m_j W_poly6 is the existing summation (density.h, density_of with Summation), read
+// from p.density. The paper takes unit masses; here every sum carries m_j, written so that the corrections
+// conserve linear momentum for any masses (sum_i m_i Delta p_i = 0). Wall ghosts (mirror_walls.h) are not
+// included yet: docs/solvers_plan.md.
+//
+// Units (SI): grad C [1/m], lambda [m^2], relaxation epsilon [1/m^2], Delta p [m], vorticity [1/s].
+// The paper's k and epsilon carry no units (its scenes fix the length scale); they are read here in units of
+// the support h (k h^2, epsilon / h^2), so a scene behaves the same at every resolution.
+#pragma once
+
+#include "grid.h"
+#include "kernels.h"
+#include "params.h"
+
+namespace sph {
+
+// Solver parameters with the paper's defaults ([MM13] sections 3 to 5).
+struct PbfParams {
+  // Constraint force mixing epsilon of lambda, in units of 1 / h^2: epsilon = relaxation / h^2. In the bulk of
+  // a lattice with h = 1.95 d, sum |grad C|^2 is 1.5 / h^2 (tests/test_pbf_formulas.cpp), so 0.1 softens the
+  // bulk's lambda by 6% and bounds a particle with almost no neighbours to |lambda| <= 10 |C| h^2.
+  float relaxation = 0.1f;
+  // Artificial pressure s_corr = -k (W(r) / W(dq))^n, [MM13] section 4: k = 0.1, n = 4, dq = 0.1 h to 0.3 h.
+  // dq = 0.2 h, the middle of the paper's range: a pair at dq gets -k, a neighbour at the rest spacing
+  // (about h / 2) about 5% of it, so s_corr acts on pairs that come too close, not on the bulk at rest.
+  float scorr_k = 0.1f;
+  int32_t scorr_n = 4;
+  float scorr_dq = 0.2f;  // dq / h
+  // 1: lambda sees max(C_i, 0), a one-sided constraint (as Bender et al.'s PositionBasedDynamics library):
+  // particles at a free surface, whose C < 0 only because neighbours are missing, are then not pulled
+  // together. 0: the paper's C_i. The free surface's pull makes a plain Jacobi iteration compress a resting
+  // blob (tests/test_pbf_formulas.cpp).
+  int32_t clamp_expansion = 0;
+  float xsph_c = 0.01f;   // XSPH viscosity c, [MM13] section 5
+  float vorticity_epsilon = 0.0f;  // vorticity confinement strength [m/s] (a = eps N x omega), 0: off
+};
+
+// [MM13] eq. 1: C_i = rho_i / rho0 - 1. Negative under expansion, positive under compression.
+SPH_HD inline float pbf_constraint(float density, float rest_density) { return density / rest_density - 1.0f; }
+
+// [MM13] section 3 (eqs. 8 to 11): lambda_i = -C_i / (sum_k |grad_k C_i|^2 + epsilon), with
+// grad_j C_i = -(m_j / rho0) grad W_ij (k = j) and grad_i C_i = (1 / rho0) sum_j m_j grad W_ij (k = i).
+// C_i from p.density[i] (max(C_i, 0) with clamp_expansion). Positive under expansion (C < 0): lambda pulls
+// neighbours in; negative under compression. Returns 0 where the denominator is not positive (an isolated
+// particle with epsilon = 0). [m^2]
+SPH_HD inline float pbf_lambda(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                               const PbfParams& params, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const float rest_density = c.fluids[p.fluid[i]].rest_density;
+  Vec3 grad_i{0.0f, 0.0f, 0.0f};  // grad_i C_i [1/m]
+  float sum_grad2 = 0.0f;         // sum_j |grad_j C_i|^2 [1/m^2]
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    if (r2 <= 0.0f) return;
+    const Vec3 g = (c.fluids[p.fluid[j]].mass / rest_density * spiky_grad_fac(k, sqrtf(r2))) * xij;
+    grad_i += g;
+    sum_grad2 += length2(g);
+  });
+  const float denominator = sum_grad2 + length2(grad_i) + params.relaxation / k.h2;
+  if (!(denominator > 0.0f)) return 0.0f;
+  const float constraint = pbf_constraint(p.density[i], rest_density);
+  return -(params.clamp_expansion && constraint < 0.0f ? 0.0f : constraint) / denominator;
+}
+
+// [MM13] eq. 13: s_corr = -k (W(r) / W(dq))^n, W = Poly6, r^2 = |x_ij|^2. Dimensionless as in the paper;
+// negative inside the support, -k at r = dq, 0 at and beyond h.
+SPH_HD inline float pbf_scorr(const KernelCoeffs& k, const PbfParams& params, float r2) {
+  const float dq = params.scorr_dq * k.h;
+  const float ratio = poly6(k, r2) / poly6(k, dq * dq);
+  float power = 1.0f;
+  for (int32_t e = 0; e < params.scorr_n; ++e) power *= ratio;
+  return -params.scorr_k * power;
+}
+
+// [MM13] eq. 14: Delta p_i = (1 / rho0) sum_j m_j (lambda_i + lambda_j + s_corr h^2) grad W_ij (Spiky),
+// lambda from pbf_lambda. The pair (i, j) moves i by m_j X and j by -m_i X for the same X: equal and opposite
+// momentum, sum_i m_i Delta p_i = 0. [m]
+SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                           const float* lambda, const PbfParams& params, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const float li = lambda[i];
+  Vec3 dp{0.0f, 0.0f, 0.0f};
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    if (r2 <= 0.0f) return;
+    const float s = li + lambda[j] + pbf_scorr(k, params, r2) * k.h2;
+    dp += (c.fluids[p.fluid[j]].mass * s * spiky_grad_fac(k, sqrtf(r2))) * xij;
+  });
+  return (1.0f / c.fluids[p.fluid[i]].rest_density) * dp;
+}
+
+// [MM13] eq. 17, XSPH viscosity: Delta v_i = c sum_j m_j / rho_ij (v_j - v_i) W_ij (Poly6), rho_ij the mean
+// density of the pair: the form of forces.h's XSPH (the paper writes the unit-mass sum without m_j / rho_ij).
+// The solver sets v_i += Delta v_i after the velocity update. [m/s]
+SPH_HD inline Vec3 pbf_xsph(const SimConstants& c, const GridView& grid, const ParticleView& p, const Vec3* vel,
+                            const PbfParams& params, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const Vec3 vi = vel[i];
+  const float rho_i = p.density[i];
+  Vec3 dv{0.0f, 0.0f, 0.0f};
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3, float r2) {
+    if (r2 <= 0.0f) return;
+    dv += (c.fluids[p.fluid[j]].mass * poly6(k, r2) / (0.5f * (rho_i + p.density[j]))) * (vel[j] - vi);
+  });
+  return params.xsph_c * dv;
+}
+
+// [MM13] eq. 15, vorticity: omega_i = curl v = sum_j (m_j / rho_j) (v_j - v_i) x grad_j W_ij, grad_j W_ij =
+// -grad_i W_ij (Spiky). The paper's unit-mass sum with the volumes m_j / rho_j, which makes it the SPH curl:
+// a rigid rotation v = w x x gives omega = 2 w where the neighbourhood is full. [1/s]
+SPH_HD inline Vec3 pbf_vorticity(const SimConstants& c, const GridView& grid, const ParticleView& p, const Vec3* vel,
+                                 int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const Vec3 vi = vel[i];
+  Vec3 omega{0.0f, 0.0f, 0.0f};
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    if (r2 <= 0.0f) return;
+    const Vec3 grad_j = (-c.fluids[p.fluid[j]].mass / p.density[j] * spiky_grad_fac(k, sqrtf(r2))) * xij;
+    omega += cross(vel[j] - vi, grad_j);
+  });
+  return omega;
+}
+
+// [MM13] eq. 16, vorticity confinement: a_i = epsilon (N x omega_i), N = eta / |eta|, eta = grad |omega| at i
+// = sum_j (m_j / rho_j) (|omega_j| - |omega_i|) grad_i W_ij; omega from pbf_vorticity. Zero where |eta|
+// vanishes (uniform vorticity: nothing to confine) or epsilon = 0. Acceleration, the paper's force per unit
+// mass. [m/s^2]
+SPH_HD inline Vec3 pbf_vorticity_confinement(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                             const Vec3* omega, const PbfParams& params, int32_t i) {
+  const Vec3 zero{0.0f, 0.0f, 0.0f};
+  if (params.vorticity_epsilon == 0.0f) return zero;
+  const KernelCoeffs& k = c.kernel;
+  const float wi = length(omega[i]);
+  Vec3 eta{0.0f, 0.0f, 0.0f};
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    if (r2 <= 0.0f) return;
+    eta += (c.fluids[p.fluid[j]].mass / p.density[j] * (length(omega[j]) - wi) * spiky_grad_fac(k, sqrtf(r2))) *
+           xij;
+  });
+  const float eta_len = length(eta);
+  // |eta| below 1e-6 |omega_i| / h: a vorticity gradient lost in round-off, no direction to push along.
+  if (!(eta_len > 1e-6f * wi / k.h)) return zero;
+  return params.vorticity_epsilon * cross((1.0f / eta_len) * eta, omega[i]);
+}
+
+}  // namespace sph
