@@ -15,6 +15,7 @@
 
 #include "common/grid.h"
 #include "common/neighbour_list.h"
+#include "common/neighbour_list_choice.h"
 #include "common/neighbour_rows.h"
 #include "common/kernels.h"
 #include "common/params.h"
@@ -333,4 +334,45 @@ TEST_CASE("neighbour lists: capacity from the expected neighbour count, none whe
   c.fluids[1].rest_density = 1000.0f;
   c.fluids[1].mass = float(ball * 1000.0 / 40.0);
   CHECK(sph::neighbour_list_capacity(c) == 80);
+}
+
+TEST_CASE("neighbour lists: the faster way is kept, the other probed less often while it keeps losing", "[grid]") {
+  sph::NeighbourListChoice choice;
+  double cost[2] = {1.0, 2.0};  // seconds per particle: [0] with a branch, [1] branch-free
+  std::vector<long> probes;     // builds at which the slower way ran
+  auto run = [&](long builds, long from) {
+    for (long b = from; b < from + builds; ++b) {
+      const bool branch_free = choice.branch_free();
+      if (cost[branch_free ? 1 : 0] > cost[branch_free ? 0 : 1]) probes.push_back(b);
+      choice.record(branch_free, cost[branch_free ? 1 : 0], 1);
+    }
+  };
+  run(2000, 0);
+  // Both timed at the start (the branch-free way first, the choice flips to the branch at build 1), then
+  // probes at growing intervals: 32 builds after the flip, then 64, ... up to 512.
+  REQUIRE(probes.size() >= 6);
+  CHECK(probes[0] == 0);
+  std::vector<long> gaps;
+  for (std::size_t i = 1; i < probes.size(); ++i) gaps.push_back(probes[i] - probes[i - 1]);
+  CHECK(gaps[0] == 1 + 32);
+  CHECK(gaps[1] == 64);
+  CHECK(gaps[2] == 128);
+  CHECK(gaps[3] == 256);
+  CHECK(gaps[4] == 512);
+  CHECK(gaps.back() == 512);
+  CHECK(choice.probe_interval() == sph::NeighbourListChoice::kLastProbe);
+  CHECK_FALSE(choice.branch_free());
+  // The fluid splashes: the branch used becomes slower than the branch-free way was. The choice flips
+  // within a few builds (the averages' lag), not at the next probe 512 builds away, and probing starts
+  // again at the first interval.
+  cost[0] = 3.0;
+  cost[1] = 1.0;
+  long flipped_at = -1;
+  for (long b = 2000; b < 2600 && flipped_at < 0; ++b) {
+    const bool branch_free = choice.branch_free();
+    choice.record(branch_free, cost[branch_free ? 1 : 0], 1);
+    if (choice.branch_free() && choice.probe_interval() == sph::NeighbourListChoice::kFirstProbe) flipped_at = b;
+  }
+  CHECK(flipped_at >= 2000);
+  CHECK(flipped_at < 2000 + 4);
 }
