@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "common/grid.h"
@@ -14,6 +15,30 @@
 #include "cpu/cpu_backend.h"
 
 namespace sph_test {
+
+// count positions uniform in the cube [0, extent)^3 [m], drawn from rng (which then draws on).
+inline std::vector<sph::Vec3> random_positions(std::mt19937& rng, int count, float extent) {
+  std::uniform_real_distribution<float> coord(0.0f, extent);
+  std::vector<sph::Vec3> pos;
+  for (int i = 0; i < count; ++i) pos.push_back(sph::Vec3{coord(rng), coord(rng), coord(rng)});
+  return pos;
+}
+
+// The cubic spline with support h and its dW/dr, in double, from the seed's form (seed 000 eqs. 5, 6) with
+// smoothing length h_s = h / 2 (support 2 h_s = h), s = r / h_s: the reference the kernel and the DFSPH
+// formulas are checked against.
+inline double seed_cubic_w(double r, double h) {
+  const double hs = 0.5 * h, s = r / hs, sigma = 1.0 / (3.14159265358979323846 * hs * hs * hs);
+  if (s >= 2.0) return 0.0;
+  if (s < 1.0) return sigma * (1.0 - 1.5 * s * s + 0.75 * s * s * s);
+  return sigma * 0.25 * (2.0 - s) * (2.0 - s) * (2.0 - s);
+}
+inline double seed_cubic_dwdr(double r, double h) {
+  const double hs = 0.5 * h, s = r / hs, sigma = 1.0 / (3.14159265358979323846 * hs * hs * hs);
+  if (s >= 2.0) return 0.0;
+  if (s < 1.0) return sigma / hs * (-3.0 * s + 2.25 * s * s);
+  return sigma / hs * (-0.75 * (2.0 - s) * (2.0 - s));
+}
 
 struct FormulaCloud {
   FormulaCloud(const std::vector<sph::Vec3>& positions, double h, float mass, float rest_density)

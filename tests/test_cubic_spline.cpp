@@ -11,25 +11,7 @@
 #include "common/kernels.h"
 #include "common/params.h"
 
-namespace {
-
-constexpr double kPiD = 3.14159265358979323846;
-
-// Seed eq. 5 and 6 with smoothing length h_s = h / 2 (support 2 h_s = h), s = r / h_s.
-double seed_w(double r, double h) {
-  const double hs = 0.5 * h, s = r / hs, sigma = 1.0 / (kPiD * hs * hs * hs);
-  if (s >= 2.0) return 0.0;
-  if (s < 1.0) return sigma * (1.0 - 1.5 * s * s + 0.75 * s * s * s);
-  return sigma * 0.25 * (2.0 - s) * (2.0 - s) * (2.0 - s);
-}
-double seed_dwdr(double r, double h) {
-  const double hs = 0.5 * h, s = r / hs, sigma = 1.0 / (kPiD * hs * hs * hs);
-  if (s >= 2.0) return 0.0;
-  if (s < 1.0) return sigma / hs * (-3.0 * s + 2.25 * s * s);
-  return sigma / hs * (-0.75 * (2.0 - s) * (2.0 - s));
-}
-
-}  // namespace
+#include "formula_fixture.h"
 
 TEST_CASE("cubic spline equals the seed's M4 with h_s = h / 2", "[kernels]") {
   for (double h : {1.0, 0.0195}) {
@@ -37,10 +19,10 @@ TEST_CASE("cubic spline equals the seed's M4 with h_s = h / 2", "[kernels]") {
     for (int i = 1; i < 100; ++i) {
       const double r = h * i / 100.0;
       INFO("h = " << h << ", r/h = " << r / h);
-      CHECK(double(sph::cubic_spline(k, float(r))) == Approx(seed_w(r, h)).epsilon(1e-5));
-      CHECK(double(sph::cubic_spline_grad_fac(k, float(r))) * r == Approx(seed_dwdr(r, h)).epsilon(1e-4));
+      CHECK(double(sph::cubic_spline(k, float(r))) == Approx(sph_test::seed_cubic_w(r, h)).epsilon(1e-5));
+      CHECK(double(sph::cubic_spline_grad_fac(k, float(r))) * r == Approx(sph_test::seed_cubic_dwdr(r, h)).epsilon(1e-4));
     }
-    const double sigma = 8.0 / (kPiD * h * h * h);
+    const double sigma = 8.0 / (sph::kPiDouble * h * h * h);
     CHECK(double(sph::cubic_spline(k, 0.0f)) == Approx(sigma).epsilon(1e-6));
   }
 }
@@ -48,7 +30,7 @@ TEST_CASE("cubic spline equals the seed's M4 with h_s = h / 2", "[kernels]") {
 TEST_CASE("cubic spline and its gradient are continuous at q = 1/2", "[kernels]") {
   for (double h : {1.0, 0.0195}) {
     const sph::KernelCoeffs k = sph::make_kernel_coeffs(h);
-    const double sigma = 8.0 / (kPiD * h * h * h);
+    const double sigma = 8.0 / (sph::kPiDouble * h * h * h);
     const float half = 0.5f * float(h);
     // Either side of the joint, a few float steps apart: both branches give sigma / 4 and dW/dr = -3 sigma / (2 h).
     const float below = std::nextafter(std::nextafter(half, 0.0f), 0.0f);

@@ -21,25 +21,10 @@ namespace {
 using sph::Vec3;
 using sph_test::FormulaCloud;
 
-constexpr double kPiD = 3.14159265358979323846;
 constexpr float kSpacing = 0.01f;  // d [m]
 constexpr double kH = 1.95 * 0.01;  // h [m], the project's h / d of about 2
 constexpr float kRho0 = 1000.0f;
 constexpr float kMass = kRho0 * kSpacing * kSpacing * kSpacing;  // m = rho0 d^3 [kg]
-
-// The cubic spline with support h and its dW/dr, in double, from the seed's form (eq. 5, 6) with h_s = h / 2.
-double cubic_w(double r, double h) {
-  const double hs = 0.5 * h, s = r / hs, sigma = 1.0 / (kPiD * hs * hs * hs);
-  if (s >= 2.0) return 0.0;
-  if (s < 1.0) return sigma * (1.0 - 1.5 * s * s + 0.75 * s * s * s);
-  return sigma * 0.25 * (2.0 - s) * (2.0 - s) * (2.0 - s);
-}
-double cubic_dwdr(double r, double h) {
-  const double hs = 0.5 * h, s = r / hs, sigma = 1.0 / (kPiD * hs * hs * hs);
-  if (s >= 2.0) return 0.0;
-  if (s < 1.0) return sigma / hs * (-3.0 * s + 2.25 * s * s);
-  return sigma / hs * (-0.75 * (2.0 - s) * (2.0 - s));
-}
 
 // L = sum over the lattice offsets x_j of x_jx^2 / r (-dW/dr) [1/m^3], in double: an interior particle's
 // sum_j m (x_j - x_i) (x) grad_i W_ij is m L I, and m L = rho0 in the continuum limit (L d^3 = 1).
@@ -49,7 +34,7 @@ double lattice_gradient_moment(double d, double h) {
     for (int y = -3; y <= 3; ++y)
       for (int x = -3; x <= 3; ++x) {
         const double r = d * std::sqrt(double(x * x + y * y + z * z));
-        if (r > 0.0 && r < h) sum += (x * d) * (x * d) / r * -cubic_dwdr(r, h);
+        if (r > 0.0 && r < h) sum += (x * d) * (x * d) / r * -sph_test::seed_cubic_dwdr(r, h);
       }
   return sum;
 }
@@ -81,9 +66,9 @@ TEST_CASE("DFSPH alpha on a lattice equals a double-precision brute force", "[df
       const double dx = double(p.pos[i].x) - p.pos[j].x, dy = double(p.pos[i].y) - p.pos[j].y,
                    dz = double(p.pos[i].z) - p.pos[j].z;
       const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-      rho += kMass * cubic_w(r, kH);
+      rho += kMass * sph_test::seed_cubic_w(r, kH);
       if (r == 0.0) continue;
-      const double g = kMass * cubic_dwdr(r, kH) / r;
+      const double g = kMass * sph_test::seed_cubic_dwdr(r, kH) / r;
       sx += g * dx;
       sy += g * dy;
       sz += g * dz;
@@ -215,9 +200,8 @@ TEST_CASE("DFSPH density rate: rigid motions give zero, compression a positive r
 
 TEST_CASE("DFSPH pressure acceleration conserves linear momentum on a random cloud", "[dfsph]") {
   std::mt19937 rng(12);
-  std::uniform_real_distribution<float> coord(0.0f, 6.0f * kSpacing), kap(-50.0f, 200.0f);
-  std::vector<Vec3> pos;
-  for (int i = 0; i < 300; ++i) pos.push_back(Vec3{coord(rng), coord(rng), coord(rng)});
+  const std::vector<Vec3> pos = sph_test::random_positions(rng, 300, 6.0f * kSpacing);
+  std::uniform_real_distribution<float> kap(-50.0f, 200.0f);
   FormulaCloud cloud(pos, kH, kMass, kRho0);
   compute_density(cloud);
   sph::ParticleView p = cloud.view();

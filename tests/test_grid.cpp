@@ -199,15 +199,31 @@ std::vector<GridCase> grid_cases(double h, Vec3 origin) {
 
 }  // namespace
 
-TEST_CASE("grid neighbour sets equal brute force: uniform random particles", "[grid]") {
+TEST_CASE("grid neighbour sets equal brute force: uniform random particles, sparse and dense", "[grid]") {
   const double h = 0.1;
   const Vec3 origin{-0.3f, 0.1f, -0.2f};
-  for (const GridCase& gc : grid_cases(h, origin)) {
-    INFO(gc.name);
-    std::mt19937 rng(12345);
-    const std::vector<Vec3> p = uniform(rng, 1500, origin, Vec3{origin.x + 1.0f, origin.y + 0.8f, origin.z + 0.6f});
-    CHECK(check_grid(gc.constants, p) > 800);  // 2 (h) and 0.66 (0.37 h) neighbours a particle: not vacuous
-  }
+  struct Cloud {
+    const char* what;
+    unsigned seed;
+    std::size_t count;
+    Vec3 lo, hi;          // offsets from the origin
+    std::size_t pairs;    // at least this many neighbour pairs: the case is not vacuous
+  };
+  const Cloud clouds[] = {
+      // 2 (h) and 0.66 (0.37 h) neighbours a particle.
+      {"sparse", 12345, 1500, Vec3{0.0f, 0.0f, 0.0f}, Vec3{1.0f, 0.8f, 0.6f}, 800},
+      // About 2.3 particles per cell of h / 2: rows of 5 cells hold about 12 candidates (more than the 8 a
+      // range is copied as at once, neighbour_rows.h), and a particle has about 290 in all (fewer than the
+      // 384 gathered at most); about 40 (h) and 4 (0.37 h) neighbours a particle.
+      {"dense", 31337, 1200, Vec3{0.1f, 0.1f, 0.1f}, Vec3{0.5f, 0.5f, 0.5f}, 3000},
+  };
+  for (const Cloud& cloud : clouds)
+    for (const GridCase& gc : grid_cases(h, origin)) {
+      INFO(cloud.what << ", " << gc.name);
+      std::mt19937 rng(cloud.seed);
+      const std::vector<Vec3> p = uniform(rng, cloud.count, origin + cloud.lo, origin + cloud.hi);
+      CHECK(check_grid(gc.constants, p) > cloud.pairs);
+    }
 }
 
 TEST_CASE("grid neighbour sets equal brute force: clustered particles", "[grid]") {
@@ -245,20 +261,6 @@ TEST_CASE("grid neighbour sets equal brute force: clustered particles", "[grid]"
       CHECK(table[only & sph::kLocalMask] == 0);
       CHECK(table[(only & sph::kLocalMask) + 1] == 600);
     }
-  }
-}
-
-TEST_CASE("grid neighbour sets equal brute force: dense rows, longer than a gathered range", "[grid]") {
-  // About 2.3 particles per cell of h / 2: rows of 5 cells hold about 12 candidates (more than the 8 a
-  // range is copied as at once, neighbour_rows.h), and a particle has about 290 in all (fewer than the 384
-  // gathered at most); at 0.37 h about 9 times fewer.
-  const double h = 0.1;
-  const Vec3 origin{0.0f, 0.0f, 0.0f};
-  for (const GridCase& gc : grid_cases(h, origin)) {
-    INFO(gc.name);
-    std::mt19937 rng(31337);
-    const std::vector<Vec3> p = uniform(rng, 1200, Vec3{0.1f, 0.1f, 0.1f}, Vec3{0.5f, 0.5f, 0.5f});
-    CHECK(check_grid(gc.constants, p) > 3000);  // about 40 (h) and 4 (0.37 h) neighbours a particle
   }
 }
 

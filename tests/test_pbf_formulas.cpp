@@ -159,9 +159,7 @@ TEST_CASE("PBF position corrections are equal and opposite and sum to zero", "[p
   }
   SECTION("a random cloud") {
     std::mt19937 rng(7);
-    std::uniform_real_distribution<float> coord(0.0f, 6.0f * kSpacing);
-    std::vector<Vec3> pos;
-    for (int i = 0; i < 300; ++i) pos.push_back(Vec3{coord(rng), coord(rng), coord(rng)});
+    const std::vector<Vec3> pos = sph_test::random_positions(rng, 300, 6.0f * kSpacing);
     FormulaCloud cloud(pos, kH, kMass, 1000.0f);
     compute_density(cloud);
     const std::vector<float> lambda = lambdas(cloud, params);
@@ -337,9 +335,8 @@ TEST_CASE("PBF vorticity confinement pushes across the vorticity, towards strong
 
 TEST_CASE("PBF XSPH leaves a rigid translation alone and conserves momentum", "[pbf]") {
   std::mt19937 rng(3);
-  std::uniform_real_distribution<float> coord(0.0f, 5.0f * kSpacing), speed(-1.0f, 1.0f);
-  std::vector<Vec3> pos;
-  for (int i = 0; i < 200; ++i) pos.push_back(Vec3{coord(rng), coord(rng), coord(rng)});
+  const std::vector<Vec3> pos = sph_test::random_positions(rng, 200, 5.0f * kSpacing);
+  std::uniform_real_distribution<float> speed(-1.0f, 1.0f);
   FormulaCloud cloud(pos, kH, kMass, 1000.0f);
   compute_density(cloud);
   sph::ParticleView p = cloud.view();

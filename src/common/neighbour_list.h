@@ -56,25 +56,26 @@ constexpr Compaction make_compaction() {
 }
 inline constexpr Compaction kCompaction = make_compaction();
 
+// Bit k set where candidate k of four, at p0..p3, lies within h of xa (r^2 < h2, computed as length2 does:
+// (x^2 + y^2) + z^2) and lane k of `live` is set (all bits).
+inline int within_mask(Vec3 xa, float h2, Vec3 p0, Vec3 p1, Vec3 p2, Vec3 p3, Ints4 live) {
+  const Floats4 dx = Floats4{xa.x, xa.x, xa.x, xa.x} - Floats4{p0.x, p1.x, p2.x, p3.x};
+  const Floats4 dy = Floats4{xa.y, xa.y, xa.y, xa.y} - Floats4{p0.y, p1.y, p2.y, p3.y};
+  const Floats4 dz = Floats4{xa.z, xa.z, xa.z, xa.z} - Floats4{p0.z, p1.z, p2.z, p3.z};
+  const Floats4 r2 = dx * dx + dy * dy + dz * dz;
+  const Ints4 in = (r2 < Floats4{h2, h2, h2, h2}) & live;
+  return (in[0] & 1) | (in[1] & 2) | (in[2] & 4) | (in[3] & 8);
+}
+
 // Appends the particles of [begin, end) within h of xa to list at *m (writes up to 4 slots from
 // min(*m, capacity), the list having capacity + kNeighbourListPad slots).
 inline void filter_range(const Vec3* pos, Vec3 xa, float h2, int32_t begin, int32_t end, int32_t* list,
                          int32_t capacity, int32_t& m) {
-  const Floats4 ax = {xa.x, xa.x, xa.x, xa.x}, ay = {xa.y, xa.y, xa.y, xa.y}, az = {xa.z, xa.z, xa.z, xa.z};
-  const Floats4 reach2 = {h2, h2, h2, h2};
-  const Ints4 stop = {end, end, end, end};
   const int32_t last = end - 1;
   for (int32_t b = begin; b < end; b += 4) {
     // Lanes past the end read the last candidate again and are masked out.
-    const Vec3 p0 = pos[b], p1 = pos[b + 1 < last ? b + 1 : last], p2 = pos[b + 2 < last ? b + 2 : last],
-               p3 = pos[b + 3 < last ? b + 3 : last];
-    const Floats4 dx = ax - Floats4{p0.x, p1.x, p2.x, p3.x};
-    const Floats4 dy = ay - Floats4{p0.y, p1.y, p2.y, p3.y};
-    const Floats4 dz = az - Floats4{p0.z, p1.z, p2.z, p3.z};
-    const Floats4 r2 = dx * dx + dy * dy + dz * dz;  // as length2: (x^2 + y^2) + z^2
-    const Ints4 index = Ints4{b, b, b, b} + Ints4{0, 1, 2, 3};
-    const Ints4 in = (r2 < reach2) & (index < stop);
-    const int mask = (in[0] & 1) | (in[1] & 2) | (in[2] & 4) | (in[3] & 8);
+    const int mask = within_mask(xa, h2, pos[b], pos[b + 1 < last ? b + 1 : last], pos[b + 2 < last ? b + 2 : last],
+                                 pos[b + 3 < last ? b + 3 : last], Ints4{b, b + 1, b + 2, b + 3} < Ints4{end, end, end, end});
     Ints4 lanes;
     std::memcpy(&lanes, kCompaction.lanes[mask], sizeof lanes);
     const Ints4 found = Ints4{b, b, b, b} + lanes;

@@ -21,7 +21,6 @@
 namespace sph {
 namespace neighbour_rows {
 
-using neighbour_simd::Floats4;
 using neighbour_simd::Ints4;
 using neighbour_simd::kCompaction;
 
@@ -103,20 +102,11 @@ inline int32_t gather_candidates(const RowsAround& rows, int32_t lx, int32_t* ca
 // particle indices; lanes past k are masked out). Same arithmetic and order as filter_range.
 inline void filter_candidates(const Vec3* pos, Vec3 xa, float h2, const int32_t* cand, int32_t k, int32_t* list,
                               int32_t capacity, int32_t& m) {
-  const Floats4 ax = {xa.x, xa.x, xa.x, xa.x}, ay = {xa.y, xa.y, xa.y, xa.y}, az = {xa.z, xa.z, xa.z, xa.z};
-  const Floats4 reach2 = {h2, h2, h2, h2};
-  const Ints4 stop = {k, k, k, k};
   for (int32_t t = 0; t < k; t += 4) {
     int32_t idx[4];
     std::memcpy(idx, cand + t, sizeof idx);
-    const Vec3 p0 = pos[idx[0]], p1 = pos[idx[1]], p2 = pos[idx[2]], p3 = pos[idx[3]];
-    const Floats4 dx = ax - Floats4{p0.x, p1.x, p2.x, p3.x};
-    const Floats4 dy = ay - Floats4{p0.y, p1.y, p2.y, p3.y};
-    const Floats4 dz = az - Floats4{p0.z, p1.z, p2.z, p3.z};
-    const Floats4 r2 = dx * dx + dy * dy + dz * dz;  // as length2: (x^2 + y^2) + z^2
-    const Ints4 slot = Ints4{t, t, t, t} + Ints4{0, 1, 2, 3};
-    const Ints4 in = (r2 < reach2) & (slot < stop);
-    const int mask = (in[0] & 1) | (in[1] & 2) | (in[2] & 4) | (in[3] & 8);
+    const int mask = neighbour_simd::within_mask(xa, h2, pos[idx[0]], pos[idx[1]], pos[idx[2]], pos[idx[3]],
+                                                 Ints4{t, t + 1, t + 2, t + 3} < Ints4{k, k, k, k});
     const int32_t* lanes = kCompaction.lanes[mask];
     const Ints4 found = {idx[lanes[0]], idx[lanes[1]], idx[lanes[2]], idx[lanes[3]]};
     std::memcpy(list + (m < capacity ? m : capacity), &found, sizeof found);
