@@ -70,13 +70,33 @@ void CpuBackend::predict(float dt) {
 // particle's neighbour list (grid.h), which density, forces and mirror walls then read.
 void CpuBackend::build_grid() {
   const int32_t n = int32_t(s_.size());
-  // (key, id, index) records, sorted in place: the previous step's order is nearly sorted already.
+  // (key, id, index) records in the current order, which is the previous step's sorted order but for the
+  // particles that changed cell: those (a few percent a step) are taken out, sorted and merged back, in
+  // O(n + k log k) instead of a full sort's O(n log n). (key, id) is unique, so the result is the full
+  // sort's, whichever records are taken out.
+  const auto before = [](const SortRecord& a, const SortRecord& b) {
+    return a.key < b.key || (a.key == b.key && a.id < b.id);
+  };
   sort_records_.resize(std::size_t(n));
   for (int32_t i = 0; i < n; ++i)
     sort_records_[std::size_t(i)] = SortRecord{cell_key(c_.grid, s_.pos[std::size_t(i)]), s_.id[std::size_t(i)], i};
-  std::sort(sort_records_.begin(), sort_records_.end(), [](const SortRecord& a, const SortRecord& b) {
-    return a.key < b.key || (a.key == b.key && a.id < b.id);
-  });
+  // Keep a record in the ascending run if it is not below the last kept one and not above its successor
+  // (a record that jumped ahead is taken out instead of the many it would leave behind).
+  moved_records_.clear();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const SortRecord r = sort_records_[i];
+    const bool in_order = (kept == 0 || !before(r, sort_records_[kept - 1])) &&
+                          (i + 1 == std::size_t(n) || !before(sort_records_[i + 1], r));
+    if (in_order) sort_records_[kept++] = r;
+    else moved_records_.push_back(r);
+  }
+  sort_records_.resize(kept);
+  std::sort(moved_records_.begin(), moved_records_.end(), before);
+  merged_records_.resize(std::size_t(n));
+  std::merge(sort_records_.begin(), sort_records_.end(), moved_records_.begin(), moved_records_.end(),
+             merged_records_.begin(), before);
+  std::swap(sort_records_, merged_records_);
   key_.resize(std::size_t(n));
   sorted_.resize(std::size_t(n));
   for (int32_t j = 0; j < n; ++j) {

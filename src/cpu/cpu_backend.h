@@ -63,7 +63,7 @@ class CpuBackend final : public Backend {
     uint64_t key;
     int32_t id, index;
   };
-  std::vector<SortRecord> sort_records_;
+  std::vector<SortRecord> sort_records_, moved_records_, merged_records_;
   std::vector<uint64_t> key_, block_code_;
   std::vector<int32_t> particle_block_, block_begin_, block_neighbours_, cell_start_;
   int32_t blocks_ = 0;  // occupied blocks at the last grid build
