@@ -216,7 +216,9 @@ def main():
         json.dump(results, f, indent=2)
     db, wj = results["dam_break"], results["water_jet"]
     lines = ["| run | figure | value | target |", "|---|---|---|---|"]
-    for walls, target in (("penalty", "<= 0.15"), ("mirror", "")):
+    # The targets hold for the full run; --quick is a smoke test at 12 particles across, whose errors are larger.
+    front_target = "<= 0.15 (full run only)" if args.quick else "<= 0.15"
+    for walls, target in (("penalty", front_target), ("mirror", "")):
         r = db[walls]
         column = "n/a" if r["column_height_mae"] is None else f"{r['column_height_mae']:.3f}"
         lines += [f"| dam break, {walls} walls ({r['particles']} particles) | surge front MAE, T <= 3 ({r['surge_points']} points); "
@@ -224,7 +226,8 @@ def main():
                   f"| dam break, {walls} walls | column height MAE ({r['column_points']} points); ms per step | "
                   f"{column}; {r['ms_per_step']:.1f} | |"]
     lines += [f"| water jet ({wj['particles']} particles) | range | {wj['range_m']:.3f} m "
-              f"({100 * wj['error_vs_axim_3.97']:+.1f}% vs AXIM 3.97 m, {100 * wj['error_vs_ballistic_4.02']:+.1f}% vs ballistic 4.02 m) | within 3% of 3.97 m |",
+              f"({100 * wj['error_vs_axim_3.97']:+.1f}% vs AXIM 3.97 m, {100 * wj['error_vs_ballistic_4.02']:+.1f}% vs ballistic 4.02 m) | "
+              f"within 3% of 3.97 m{' (full run only)' if args.quick else ''} |",
               f"| water jet | centreline against the ballistic trajectory, RMS | {wj['centreline_rms_vs_ballistic_m']:.3f} m | |",
               f"| water jet | jet radius, first / last slice (incompressible: {0.1:.3f} narrowing to "
               f"{wj['radius_last_slice_continuity_m']:.3f} m) | {wj['radius_first_slice_m']:.3f} m / {wj['radius_last_slice_m']:.3f} m | |",

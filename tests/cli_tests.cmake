@@ -37,7 +37,15 @@ sph_cli_test(bad_set
 sph_cli_test(bad_set_path
   --exit 1 --stderr "fluids.7.viscosity" --stderr "not an index"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set fluids.7.viscosity=1 --out ${SPH_CLI_OUT}/bad_set_path)
-# A key misspelt in --set is blamed on the --set, not on the scene file, and says what is allowed.
+# A misspelt required key is named as the typo it is, not only as the key that is missing.
+sph_cli_test(misspelt_required_key
+  --exit 1 --stderr "misspelt_required.json: resolution: is required" --stderr "unknown key \"resolutoin\""
+  -- ${SPH_RUN} ${SPH_CLI_DATA}/misspelt_required.json --out ${SPH_CLI_OUT}/misspelt_required_key)
+# A key misspelt in --set is blamed on the --set, not on the scene file, and says what is allowed; also
+# where the typo is in the first part of the path (the --set created that object).
+sph_cli_test(set_unknown_section
+  --exit 1 --stderr "error: --set \"resolutoin.particles_across=30\": resolutoin: unknown key" --stderr "resolution"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set resolutoin.particles_across=30 --out ${SPH_CLI_OUT}/set_unknown_section)
 sph_cli_test(set_unknown_key
   --exit 1 --stderr "error: --set \"sph.viscosty=0.1\": sph.viscosty: unknown key" --stderr "viscosity"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set sph.viscosty=0.1 --out ${SPH_CLI_OUT}/set_unknown_key)
@@ -48,6 +56,9 @@ sph_cli_test(set_out_of_range
 sph_cli_test(unexpected_argument
   --exit 1 --stderr "error: The following argument was not expected: extra" --stderr "--help"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json extra --out ${SPH_CLI_OUT}/unexpected_argument)
+sph_cli_test(misspelt_option
+  --exit 1 --stderr "error: The following arguments were not expected" --stderr "--frams-every: did you mean --frames-every?"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --frams-every 0.1 --out ${SPH_CLI_OUT}/misspelt_option)
 # Paths that are not scene files are refused at once, never read forever (/dev/zero) or waited on (FIFO).
 sph_cli_test(scene_dev_zero
   --exit 1 --max-seconds 5 --stderr "/dev/zero" --stderr "not a regular file"

@@ -199,7 +199,7 @@ TEST_CASE("PBF s_corr is negative, -k at dq and zero at and beyond h", "[pbf]") 
   }
 }
 
-TEST_CASE("one PBF Jacobi iteration reduces the compression of a lattice; the paper's C pulls its surface in",
+TEST_CASE("one PBF Jacobi iteration reduces the compression of a lattice, and the paper's C pulls its surface in",
           "[pbf]") {
   const float rho0 = float(lattice_density(kSpacing));
   const int n = 8;

@@ -73,7 +73,7 @@ class Demo {
     if (sim_->emission_stopped() && !emission_note_) {
       emission_note_ = true;
       note("emission stopped at t = " + std::to_string(sim_->time()) + " s: the jets would exceed limits.max_particles = " +
-           std::to_string(std::llround(sim_->scene().max_particles)) + " (give the jets a lifetime or raise the limit)");
+           std::to_string(std::llround(sim_->scene().max_particles)) + " (give the jets a lifetime or raise limits.max_particles in the scene)");
     }
   }
 

@@ -129,7 +129,7 @@ void parse_header(const std::vector<std::string>& lines, const std::string& path
       if (double(count) > max_particles) {
         std::ostringstream os;
         os << "the frame holds " << count << " particles, more than limits.max_particles = " << std::llround(max_particles)
-           << "; raise the limit";
+           << "; raise the limit (--set limits.max_particles=N)";
         refuse(path, os.str());
       }
       n = std::size_t(count);

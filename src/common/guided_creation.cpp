@@ -187,7 +187,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   const bool from_frame = !scene.initial_state.empty();  // the frame replaces the instant emitters' fill
   for (const EmitterSpec& e : scene.emitters)
     if (e.type != EmitterType::Jet && !from_frame) estimate += instant_count_bound(e, lattice);
-  check_particle_budget(scene, estimate, "the instant emitters (box, sphere) at spacing " + metres(s.spacing) + " m");
+  check_particle_budget(scene, estimate, "filling the instant emitters (box, sphere) at spacing " + metres(s.spacing) + " m");
   for (std::size_t i = 0; i < scene.emitters.size(); ++i)
     if (scene.emitters[i].type == EmitterType::Jet)
       check_particle_budget(scene, JetEmitter::section_candidates(scene.emitters[i], s.spacing),

@@ -103,15 +103,14 @@ struct ParticleState {
 
 // Bytes of memory one particle needs at peak, used to refuse particle counts that cannot fit before
 // allocating anything. The fields above take 97 bytes and the derived ones 40 (held by one state only:
-// take_derived); the state, its reorder copy, the downloaded copy, the grid (sort records, keys, block
-// tables) and the CPU builds' neighbour lists (64 slots at the default 32 neighbours) make about seven
-// times the 97. Measured peak resident size of scenes/dam_break.json (/usr/bin/time -v, 5 steps) at
-// 128,000 particles: 624 bytes per particle on cpu, 718 on host (599 and 684 per added particle from 16k),
-// before the derived fields were added; with them (issue 11, float4 packing) 696 on cpu and 792 on host
-// (656 and 751 per added particle), 3 bytes more than with the 12 bytes of derived fields before (688 and
-// 788). The estimate, 719 bytes, is 3% above cpu's peak and 9% below host's.
+// take_derived); the state, its reorder copy, the downloaded copy, the grid (sort records and the CPU
+// sort's merge buffers, keys, block tables) and the CPU builds' neighbour lists (64 slots at the default
+// 32 neighbours) make about eight times the 97. Measured peak resident size of scenes/dam_break.json
+// (/usr/bin/time -v, 5 steps) at 128,000 particles, 2026-11-29 after issue 11: 727 bytes per particle on
+// cpu, 816 on host (687 and 775 per added particle from 16k). The estimate, 816 bytes, is not below
+// either.
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
 constexpr std::size_t kDerivedFieldBytes = 2 * sizeof(Vec4) + 2 * sizeof(float);
-constexpr std::size_t kBytesPerParticle = 7 * kParticleFieldBytes + kDerivedFieldBytes;
+constexpr std::size_t kBytesPerParticle = 8 * kParticleFieldBytes + kDerivedFieldBytes;
 
 }  // namespace sph

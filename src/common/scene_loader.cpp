@@ -96,7 +96,7 @@ class ObjectReader {
   }
 
   Vec3d required_vec3(const std::string& key) {
-    if (!has(key)) fail(source_, key_path(key), "is required");
+    if (!has(key)) missing(key, "is required");
     return vec3(key, {});
   }
 
@@ -112,6 +112,16 @@ class ObjectReader {
 
   void allow(std::initializer_list<const char*> keys) {
     for (const char* k : keys) known_.insert(k);
+  }
+
+  // Fails for a required key (or choice of keys) that is missing, naming the keys of this object that are
+  // not allowed here: a misspelt required key must be reported as the typo it is.
+  [[noreturn]] void missing(const std::string& key, const std::string& what) const {
+    std::string unknown;
+    for (auto it = j_.begin(); it != j_.end(); ++it)
+      if (!known_.count(it.key()) && it.key() != "comment") unknown += (unknown.empty() ? "\"" : ", \"") + it.key() + "\"";
+    fail(source_, key.empty() ? path_ : key_path(key),
+         what + (unknown.empty() || known_.empty() ? "" : " (this object has the unknown key " + unknown + ": misspelt?)"));
   }
 
   const std::string& source() const { return source_; }
@@ -174,7 +184,7 @@ EmitterSpec read_emitter(ObjectReader& r, const std::vector<FluidSpec>& fluids) 
   EmitterSpec e;
   e.type = r.choice<EmitterType>("type", EmitterType::Box,
                                  {{"box", EmitterType::Box}, {"sphere", EmitterType::Sphere}, {"jet", EmitterType::Jet}});
-  if (!r.has("type")) fail(r.source(), r.key_path("type"), "is required (\"box\", \"sphere\" or \"jet\")");
+  if (!r.has("type")) r.missing("type", "is required (\"box\", \"sphere\" or \"jet\")");
   e.fluid = read_fluid_ref(r, fluids);
   switch (e.type) {
     case EmitterType::Box:
@@ -187,7 +197,7 @@ EmitterSpec read_emitter(ObjectReader& r, const std::vector<FluidSpec>& fluids) 
     case EmitterType::Sphere:
       r.allow({"type", "fluid", "center", "radius", "velocity"});
       e.center = r.required_vec3("center");
-      if (!r.has("radius")) fail(r.source(), r.key_path("radius"), "is required");
+      if (!r.has("radius")) r.missing("radius", "is required");
       e.radius = r.number("radius", 0.0, 0.0, kHuge, true);
       e.velocity = r.vec3("velocity", e.velocity);
       break;
@@ -198,9 +208,9 @@ EmitterSpec read_emitter(ObjectReader& r, const std::vector<FluidSpec>& fluids) 
                                        {{"circle", JetSection::Circle}, {"square", JetSection::Square}});
       e.position = r.required_vec3("position");
       e.direction = normalised(r.vec3("direction", e.direction), r.source(), r.key_path("direction"));
-      if (!r.has("radius")) fail(r.source(), r.key_path("radius"), "is required");
+      if (!r.has("radius")) r.missing("radius", "is required");
       e.radius = r.number("radius", 0.0, 0.0, kHuge, true);
-      if (!r.has("speed")) fail(r.source(), r.key_path("speed"), "is required");
+      if (!r.has("speed")) r.missing("speed", "is required");
       e.speed = r.number("speed", 0.0, 0.0, 1e4, true);
       e.lifetime = r.number("lifetime", 0.0, 0.0, 1e6);
       e.inlet_length = r.number("inlet_length", -1.0, -1.0, kHuge);
@@ -227,7 +237,7 @@ BoundarySpec read_boundary(ObjectReader& r) {
   s.type = r.choice<ShapeType>("type", ShapeType::Box,
                                {{"box", ShapeType::Box}, {"plane", ShapeType::Plane}, {"sphere", ShapeType::Sphere},
                                 {"quadric", ShapeType::Quadric}});
-  if (!r.has("type")) fail(r.source(), r.key_path("type"), "is required (\"box\", \"plane\", \"sphere\" or \"quadric\")");
+  if (!r.has("type")) r.missing("type", "is required (\"box\", \"plane\", \"sphere\" or \"quadric\")");
   read_coefficients(r, s);
   switch (s.type) {
     case ShapeType::Box: {
@@ -244,19 +254,19 @@ BoundarySpec read_boundary(ObjectReader& r) {
       r.allow({"type", "bounce", "slip", "energy_conserving", "point", "normal", "absorb"});
       s.absorb = r.boolean("absorb", false) ? 1 : 0;
       s.a = to_vec3(r.required_vec3("point"));
-      if (!r.has("normal")) fail(r.source(), r.key_path("normal"), "is required");
+      if (!r.has("normal")) r.missing("normal", "is required");
       s.b = to_vec3(normalised(r.vec3("normal", {}), r.source(), r.key_path("normal")));
       break;
     case ShapeType::Sphere:
       r.allow({"type", "bounce", "slip", "energy_conserving", "center", "radius", "inside"});
       s.a = to_vec3(r.required_vec3("center"));
-      if (!r.has("radius")) fail(r.source(), r.key_path("radius"), "is required");
+      if (!r.has("radius")) r.missing("radius", "is required");
       s.radius = float(r.number("radius", 0.0, 0.0, kHuge, true));
       s.keep_inside = r.boolean("inside", true);
       break;
     case ShapeType::Quadric: {
       r.allow({"type", "bounce", "slip", "energy_conserving", "matrix"});
-      if (!r.has("matrix")) fail(r.source(), r.key_path("matrix"), "is required (4x4 symmetric, fluid where p^T Q p >= 0)");
+      if (!r.has("matrix")) r.missing("matrix", "is required (4x4 symmetric, fluid where p^T Q p >= 0)");
       const json& m = r.raw("matrix");
       const std::string key = r.key_path("matrix");
       if (!m.is_array() || m.size() != 4) fail(r.source(), key, "expected 4 rows of 4 numbers");
@@ -364,7 +374,7 @@ Scene read_scene(const json& root, const std::string& source) {
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
-  if (!r.has("fluids")) fail(source, "fluids", "is required: a list of fluids (at least one)");
+  if (!r.has("fluids")) r.missing("fluids", "is required: a list of fluids (at least one)");
   const json& fl = r.raw("fluids");
   if (!fl.is_array() || fl.empty()) fail(source, "fluids", "expected a non-empty list of fluid objects");
   if (fl.size() > std::size_t(kMaxFluids))
@@ -381,7 +391,7 @@ Scene read_scene(const json& root, const std::string& source) {
   }
   // With an initial state the emitters may be left out: the frame holds the fluid.
   if (!r.has("emitters") && s.initial_state.empty())
-    fail(source, "emitters", "is required: a list of emitters (box, sphere, jet), or an initial_state");
+    r.missing("emitters", "is required: a list of emitters (box, sphere, jet), or an initial_state");
   const json& em = r.has("emitters") ? r.raw("emitters") : json::array();
   if (!em.is_array() || (em.empty() && s.initial_state.empty()))
     fail(source, "emitters", "expected a non-empty list of emitter objects");
@@ -401,12 +411,12 @@ Scene read_scene(const json& root, const std::string& source) {
     }
   }
 
-  if (!r.has("resolution")) fail(source, "resolution", "is required: {\"particles_across\": N} or {\"spacing\": metres}");
+  if (!r.has("resolution")) r.missing("resolution", "is required: {\"particles_across\": N} or {\"spacing\": metres}");
   {
     ObjectReader rr(r.raw("resolution"), source, "resolution");
     rr.allow({"particles_across", "spacing", "neighbours", "mass"});
     const bool across = rr.has("particles_across"), spacing = rr.has("spacing");
-    if (across == spacing) fail(source, "resolution", "give exactly one of particles_across and spacing");
+    if (across == spacing) rr.missing("", "give exactly one of particles_across and spacing");
     if (across) {
       const json& v = rr.raw("particles_across");
       if (!v.is_number_integer()) fail(source, "resolution.particles_across", "expected a whole number");
@@ -511,16 +521,39 @@ Scene read_scene(const json& root, const std::string& source) {
   return s;
 }
 
+// Whether the dotted path (object keys, array indices) names a value in j.
+bool has_path(const json& j, const std::string& path) {
+  const json* node = &j;
+  std::stringstream ss(path);
+  std::string part;
+  while (std::getline(ss, part, '.')) {
+    if (node->is_object() && node->contains(part)) {
+      node = &(*node)[part];
+    } else if (node->is_array()) {
+      char* end = nullptr;
+      const long i = std::strtol(part.c_str(), &end, 10);
+      if (part.empty() || *end != '\0' || i < 0 || i >= long(node->size())) return false;
+      node = &(*node)[std::size_t(i)];
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
 // The --set override that wrote the key an error message names (source + ": " + key + ": ..."), if any:
-// a typo or a bad value given on the command line must not be blamed on the scene file.
+// the key itself or a value inside it, or an object the override created (a misspelt first part of its
+// path). A typo or a bad value given on the command line must not be blamed on the scene file.
 const std::string* override_of(const std::string& message, const std::string& source,
-                               const std::vector<std::string>& overrides) {
+                               const std::vector<std::string>& overrides, const json& file) {
   if (message.compare(0, source.size() + 2, source + ": ") != 0) return nullptr;
   const std::string rest = message.substr(source.size() + 2);
+  const std::string key = rest.substr(0, rest.find(": "));
   for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {  // the last --set of a key wins
     const std::string path = it->substr(0, it->find('='));
-    if (rest.compare(0, path.size() + 1, path + ":") == 0 || rest.compare(0, path.size() + 1, path + ".") == 0)
-      return &*it;
+    const bool inside = key == path || key.compare(0, path.size() + 1, path + ".") == 0;
+    const bool created = path.compare(0, key.size() + 1, key + ".") == 0 && !has_path(file, key);
+    if (inside || created) return &*it;
   }
   return nullptr;
 }
@@ -534,12 +567,13 @@ Scene parse_scene(const std::string& text, const std::string& source, const std:
   } catch (const json::exception& e) {  // syntax errors, and numbers out of a double's range
     throw SceneError(source + ": not valid JSON: " + e.what());
   }
+  const json file = overrides.empty() ? json() : root;
   for (const auto& o : overrides) apply_override(root, o, source);
   try {
     return read_scene(root, source);
   } catch (const SceneError& e) {
     const std::string message = e.what();
-    if (const std::string* o = override_of(message, source, overrides))
+    if (const std::string* o = override_of(message, source, overrides, file))
       throw SceneError("--set \"" + *o + "\": " + message.substr(source.size() + 2) + " (in the scene " + source +
                        " as changed by --set)");
     throw;

@@ -76,7 +76,7 @@ void check_particle_budget(const Scene& scene, double count, const std::string& 
   if (!(count <= scene.max_particles)) {
     os << scene.source << ": " << what << " needs about " << count_text(count)
        << " particles, more than limits.max_particles = " << count_text(scene.max_particles) << "; " << advice
-       << ", or raise the limit";
+       << ", or raise the limit (--set limits.max_particles=N)";
     throw SceneError(os.str());
   }
   const double bytes = count * double(kBytesPerParticle);

@@ -210,7 +210,7 @@ void Simulation::advance() {
       }
       std::ostringstream os;
       os << scene_.source << ": at t = " << time_ << " s the jets would exceed limits.max_particles = "
-         << std::llround(scene_.max_particles) << "; give the jets a lifetime or raise the limit";
+         << std::llround(scene_.max_particles) << "; give the jets a lifetime or raise the limit (--set limits.max_particles=N)";
       throw SceneError(os.str());
     }
     for (const Spawn& sp : spawns) add_energy(sp.pos, sp.vel, sp.fluid);

@@ -32,10 +32,10 @@ std::string device_count_failure(cudaError_t status) {
   const std::string needs = "CUDA " + std::to_string(runtime / 1000) + "." + std::to_string(runtime % 1000 / 10);
   if (status == cudaErrorInsufficientDriver && driver.empty())
     return "no NVIDIA driver is loaded (no /proc/driver/nvidia/version); install the NVIDIA driver for " + needs +
-           " or newer, or use --backend host";
+           " or newer, or use the host back end";
   if (status == cudaErrorInsufficientDriver)
     return "the NVIDIA driver (" + driver + ") is older than this build's runtime, " + needs +
-           ", needs; update the driver or use --backend host";
+           ", needs; update the driver or use the host back end";
   if (status == cudaErrorNoDevice) return "no CUDA device found";
   return std::string("no usable CUDA device: ") + cudaGetErrorName(status) + " (" + cudaGetErrorString(status) + ")";
 }

@@ -59,10 +59,14 @@ bool draw_panel(PanelModel& m) {
   ImGui::Separator();
   changed |= ImGui::Checkbox("paused (space)", &m.paused);
   changed |= ImGui::SliderInt("substeps (+/-)", &m.substeps, 1, 64);
+  ImGui::PushItemWidth(-ImGui::GetFontSize() * 10.5f);  // room for the labels right of the sliders
   changed |= ImGui::SliderFloat("viscosity [Pa s]", &m.viscosity, 0.0f, 20.0f, "%.4g", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the first fluid's viscosity; the scene's other fluids scale with it, keeping their ratios");
   changed |= ImGui::SliderFloat("speed of sound", &m.speed_of_sound, 0.5f, 200.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::SliderFloat("near stiffness", &m.near_stiffness, 0.0f, 100.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::SliderFloat("max time step", &m.dt_max, 1e-5f, 1e-2f, "%.2e", ImGuiSliderFlags_Logarithmic);
+  ImGui::PopItemWidth();
   const char* modes[] = {"fluid", "speed", "density error", "pressure", "grid cell"};
   changed |= ImGui::Combo("colour (C)", &m.colour_mode, modes, IM_ARRAYSIZE(modes));
   changed |= ImGui::Checkbox("flat points (V)", &m.flat_points);
