@@ -26,3 +26,12 @@
 #else
 #define SPH_INLINE_LAMBDA
 #endif
+
+// SPH_KERNEL_FN marks the operator() of a phase functor (src/solvers/) that reads the constants through its
+// back end's reference: device code only under nvcc (the constant symbol exists only there,
+// src/cuda/device_constants.h), an ordinary member function under a plain C++ compiler.
+#if defined(__CUDACC__)
+#define SPH_KERNEL_FN __device__
+#else
+#define SPH_KERNEL_FN
+#endif

@@ -6,14 +6,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "../common/boundaries.h"
-#include "../common/density.h"
-#include "../common/forces.h"
 #include "../common/grid_build.h"
 #include "../common/neighbour_list.h"
 #include "../common/neighbour_rows.h"
-#include "../common/integrate.h"
-#include "../common/pressure.h"
+#include "../solvers/wcsph.h"
 
 namespace sph {
 namespace {
@@ -28,41 +24,43 @@ void timed(PhaseTimes& t, Phase p, F&& f) {
 
 }  // namespace
 
+// The serial reference's execution interface (src/solvers/execution.h): plain loops, in index order, no
+// threads.
+struct CpuBackend::Exec {
+  struct Constants {
+    const SimConstants* p;
+    const SimConstants& operator*() const { return *p; }
+  };
+  CpuBackend& b;
+  Constants constants() const { return Constants{&b.c_}; }
+  const SimConstants& host_constants() const { return b.c_; }
+  ParticleView particles() { return b.s_.view(); }
+  GridView grid() const { return b.grid_view(); }
+  template <class F>
+  void for_each(const F& f) {
+    const int32_t n = int32_t(b.s_.size());
+    for (int32_t i = 0; i < n; ++i) f(i);
+  }
+  void build_grid() { b.build_grid(); }
+  void recycle() { b.recycle(); }
+};
+
 void CpuBackend::step(float dt) {
   for (const Phase p : kStepPhases) step_phase(p, dt);
   ++times_.steps;
 }
 
+// The solver's phase p (src/solvers/wcsph.h), timed.
 void CpuBackend::step_phase(Phase p, float dt) {
   if (p == Phase::Emit || p == Phase::Count)
     throw std::invalid_argument(std::string("cpu: ") + phase_name(p) + " is not a phase of a step");
-  timed(times_, p, [&] {
-    switch (p) {
-      case Phase::Predict: predict(dt); return;        // integrator: move to where forces are evaluated
-      case Phase::BuildGrid: build_grid(); return;     // counting sort by cell, reorder all arrays
-      case Phase::Density: density(dt); return;        // density and near density
-      case Phase::Pressure: pressure(); return;        // equation of state, near pressure
-      case Phase::Forces: forces(); return;            // pressure, viscosity, surface tension, gravity
-      case Phase::Correct: correct(dt); return;        // integrator: finish the step
-      case Phase::Boundaries: boundaries(dt); return;  // penalty boundaries
-      case Phase::Recycle: recycle(); return;          // remove particles past their lifetime
-      case Phase::Emit:
-      case Phase::Count: return;                       // refused above
-    }
-  });
+  Exec x{*this};
+  timed(times_, p, [&] { wcsph::run_phase(x, p, dt); });
 }
 
 void CpuBackend::initialise_forces() {
-  for (std::size_t i = 0; i < s_.size(); ++i) s_.vel_force[i] = s_.vel[i];
-  build_grid();
-  density(0.0f);
-  pressure();
-  forces();
-}
-
-void CpuBackend::predict(float dt) {
-  const ParticleView p = s_.view();
-  for (int32_t i = 0; i < p.n; ++i) predict_particle(c_, p, i, dt);
+  Exec x{*this};
+  wcsph::initialise(x);
 }
 
 // The grid of grid_build.h: keys, sort by (key, id), blocks, each block's cell table and neighbours; then
@@ -151,36 +149,6 @@ void CpuBackend::build_grid() {
     }
   list_choice_.record(branch_free, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                       std::size_t(n));
-}
-
-void CpuBackend::density(float dt) {
-  const ParticleView p = s_.view();
-  const GridView g = grid_view();
-  for (int32_t i = 0; i < p.n; ++i) density_of(c_, g, p, i, dt);
-}
-
-void CpuBackend::pressure() {
-  const ParticleView p = s_.view();
-  for (int32_t i = 0; i < p.n; ++i) pressure_of(c_, p, i);
-}
-
-void CpuBackend::forces() {
-  const ParticleView p = s_.view();
-  const GridView g = grid_view();
-  with_force_model(c_, [&](auto model) {
-    for (int32_t i = 0; i < p.n; ++i) forces_with<decltype(model)>(c_, g, p, i);
-  });
-}
-
-void CpuBackend::correct(float dt) {
-  const ParticleView p = s_.view();
-  for (int32_t i = 0; i < p.n; ++i) correct_particle(c_, p, i, dt);
-}
-
-void CpuBackend::boundaries(float dt) {
-  if (c_.num_shapes == 0) return;
-  const ParticleView p = s_.view();
-  for (int32_t i = 0; i < p.n; ++i) boundaries_of(c_, p, i, dt);
 }
 
 // Particles older than their fluid's lifetime, or taken out by an absorbing boundary, leave the

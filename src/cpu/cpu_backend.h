@@ -1,5 +1,6 @@
-// The serial reference back end: plain loops over particles, one phase per function, no threads.
-// The physics of every phase is the shared per-particle code of src/common/; this file only schedules it.
+// The serial reference back end: plain loops over particles, no threads. It runs the solver's phases
+// (src/solvers/wcsph.h) through its execution interface; the physics is the shared per-particle code of
+// src/common/, the order of a step the solver's.
 #pragma once
 
 #include <vector>
@@ -26,15 +27,8 @@ class CpuBackend final : public Backend {
   const PhaseTimes& phase_times() const override { return times_; }
   void set_constants(const SimConstants& constants) override { c_ = constants; }
 
-  // Phases, public so tests can run them one at a time and compare back ends phase by phase.
-  void predict(float dt);
+  // The grid phase alone (tests of the grid and of per-particle formulas); step_phase runs any phase.
   void build_grid();
-  void density(float dt);
-  void pressure();
-  void forces();
-  void correct(float dt);
-  void boundaries(float dt);
-  void recycle();
 
   GridView grid_view() const {
     return GridView{c_.grid,
@@ -54,6 +48,9 @@ class CpuBackend final : public Backend {
   ParticleState& state() { return s_; }
 
  private:
+  struct Exec;  // the execution interface the solver runs on (cpu_backend.cpp, src/solvers/execution.h)
+  void recycle();
+
   SimConstants c_;
   ParticleState s_;
   ParticleState sorted_;              // reorder target, swapped with s_

@@ -1,5 +1,5 @@
-// The device back end: the phases of a step as data-parallel loops over particle or block indices
-// (device_launch.h), the physics from src/common/, the grid sorted by cell key (device_grid.h). One source, two builds (see
+// The device back end: the solver's phases (src/solvers/wcsph.h) as data-parallel loops over particle or
+// block indices (device_launch.h), the physics from src/common/, the grid sorted by cell key (device_grid.h). One source, two builds (see
 // device_backend.h): SPH_DEVICE_NS and the factory name are set by the including build.
 //
 // The simulation constants are read from one copy (device_constants.h): the GPU's constant memory under
@@ -24,12 +24,8 @@
 #include <thrust/scan.h>
 #include <thrust/transform_reduce.h>
 
-#include "../common/boundaries.h"
-#include "../common/density.h"
-#include "../common/forces.h"
 #include "../common/grid.h"
-#include "../common/integrate.h"
-#include "../common/pressure.h"
+#include "../solvers/wcsph.h"
 #include "device_arrays.h"
 #include "device_constants.h"
 #include "device_faults.h"
@@ -48,28 +44,7 @@
 namespace sph {
 namespace SPH_DEVICE_NS {
 
-// ---- phase functors: each calls the shared per-particle code --------------------------------------------
-
-struct PredictFn {
-  ConstantsRef c;
-  ParticleView p;
-  float dt;
-  SPH_KERNEL_FN void operator()(int32_t i) const { predict_particle(*c, p, i, dt); }
-};
-
-// Occupancy targets of issue 11 (kBlocksPerSm, see launch): density 64 registers (4 blocks of 256 per
-// SM), forces 80 (3 blocks). Ignored by the host build.
-// One kernel per density method: a kernel that held both (density_of's run-time switch) needed the
-// registers of the larger, and spilled under the bound.
-template <bool kSummation>
-struct DensityFn {
-  static constexpr int kBlocksPerSm = 4;
-  ConstantsRef c;
-  GridView g;
-  ParticleView p;
-  float dt;
-  SPH_KERNEL_FN void operator()(int32_t i) const { density_with<kSummation>(*c, g, p, i, dt); }
-};
+// ---- the back end's own functors (the solver's phases are in src/solvers/wcsph.h) ----------------------
 
 // The grid phase's packed position and mass records (pack_position), after the reorder.
 struct PackPositionFn {
@@ -78,39 +53,10 @@ struct PackPositionFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { pack_position(*c, p, i); }
 };
 
-struct PressureFn {
-  ConstantsRef c;
-  ParticleView p;
-  SPH_KERNEL_FN void operator()(int32_t i) const { pressure_of(*c, p, i); }
-};
 
-template <class Model>  // a ForceModel (forces.h)
-struct ForcesFn {
-  static constexpr int kBlocksPerSm = 3;
-  ConstantsRef c;
-  GridView g;
-  ParticleView p;
-  SPH_KERNEL_FN void operator()(int32_t i) const { forces_with<Model>(*c, g, p, i); }
-};
 
-struct CorrectFn {
-  ConstantsRef c;
-  ParticleView p;
-  float dt;
-  SPH_KERNEL_FN void operator()(int32_t i) const { correct_particle(*c, p, i, dt); }
-};
 
-struct BoundariesFn {
-  ConstantsRef c;
-  ParticleView p;
-  float dt;
-  SPH_KERNEL_FN void operator()(int32_t i) const { boundaries_of(*c, p, i, dt); }
-};
 
-struct CopyVelocityFn {
-  ParticleView p;
-  SPH_HD void operator()(int32_t i) const { p.vel_force[i] = p.vel[i]; }
-};
 
 // Recycle: whether each particle stays, in a loop of its own, so that the stable selection that follows
 // (CUB's select kernel) reads flags only: with this test as its predicate it spilled registers (ptxas).
@@ -244,11 +190,8 @@ class DeviceBackend final : public Backend {
     settle();
     diag_current_ = false;
     run_phase(name_, "initial forces", [&] {
-      launch(n(), CopyVelocityFn{d_.view()});
-      build_grid();
-      density(0.0f);
-      pressure();
-      forces();
+      Exec x{*this};
+      wcsph::initialise(x);
     });
   }
 
@@ -386,23 +329,27 @@ class DeviceBackend final : public Backend {
     trim_to_ = -1;
   }
 
+  // The device back end's execution interface (src/solvers/execution.h): every loop a kernel on the
+  // step's stream (cuda) or an OpenMP loop (host), src/cuda/device_launch.h.
+  struct Exec {
+    using Constants = ConstantsRef;
+    DeviceBackend& b;
+    Constants constants() { return b.constants(); }
+    const SimConstants& host_constants() const { return b.c_; }
+    ParticleView particles() { return b.d_.view(); }
+    GridView grid() const { return b.grid_view(); }
+    template <class F>
+    void for_each(const F& f) {
+      launch(b.n(), f);
+    }
+    void build_grid() { b.build_grid(); }
+    void recycle() { b.recycle(); }
+  };
+
+  // The solver's phase p (src/solvers/wcsph.h), timed.
   void run_step_phase(Phase p, float dt) {
-    timed(p, [&] {
-      switch (p) {
-        case Phase::Predict: launch(n(), PredictFn{constants(), d_.view(), dt}); return;
-        case Phase::BuildGrid: build_grid(); return;
-        case Phase::Density: density(dt); return;
-        case Phase::Pressure: pressure(); return;
-        case Phase::Forces: forces(); return;
-        case Phase::Correct: launch(n(), CorrectFn{constants(), d_.view(), dt}); return;
-        case Phase::Boundaries:
-          if (c_.num_shapes > 0) launch(n(), BoundariesFn{constants(), d_.view(), dt});
-          return;
-        case Phase::Recycle: recycle(); return;
-        case Phase::Emit:
-        case Phase::Count: return;  // not phases of a step
-      }
-    });
+    Exec x{*this};
+    timed(p, [&] { wcsph::run_phase(x, p, dt); });
   }
 
   // After enqueued work that moved the particles: the summary (diagnostics, the kept count after recycling
@@ -419,17 +366,6 @@ class DeviceBackend final : public Backend {
     d_.take_derived(sorted_);  // the reorder and the compaction carry only the fields the loops derive theirs from
     d_.fit_derived();
     launch(n(), PackPositionFn{constants(), d_.view()});
-  }
-
-  void density(float dt) {
-    if (c_.density == DensityMethod::Summation)
-      launch(n(), DensityFn<true>{constants(), grid_view(), d_.view(), dt});
-    else
-      launch(n(), DensityFn<false>{constants(), grid_view(), d_.view(), dt});
-  }
-  void pressure() { launch(n(), PressureFn{constants(), d_.view()}); }
-  void forces() {
-    with_force_model(c_, [&](auto model) { launch(n(), ForcesFn<decltype(model)>{constants(), grid_view(), d_.view()}); });
   }
 
   // Keeps the particles that have not expired, in order (a stable compaction: deterministic). Skipped when

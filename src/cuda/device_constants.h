@@ -7,12 +7,11 @@
 // went to local memory, per thread (ptxas, sm_90: forces 126 registers and a 6,016-byte stack frame).
 // The host build (g++, OpenMP) reads the back end's own copy through a pointer: the same physics, the
 // same bytes, no copy per loop.
-//
-// SPH_KERNEL_FN marks the operator() of a functor that reads the constants: device code only under
-// nvcc (the constant symbol exists only there), an ordinary member function under g++.
+// The phase functors' operator() that reads them is SPH_KERNEL_FN (sph_hd.h).
 #pragma once
 
 #include "../common/params.h"
+#include "../common/sph_hd.h"
 
 #if defined(__CUDACC__)
 #include "cuda_check.h"
@@ -22,8 +21,6 @@ namespace sph {
 namespace SPH_DEVICE_NS {
 
 #if defined(__CUDACC__)
-
-#define SPH_KERNEL_FN __device__
 
 // The one device copy. A process may hold several cuda back ends (the device test, the demo's back-end
 // switch): ConstantsOwner below uploads a back end's constants before its kernels run.
@@ -61,8 +58,6 @@ class ConstantsOwner {
 };
 
 #else
-
-#define SPH_KERNEL_FN
 
 struct ConstantsRef {
   const SimConstants* host;
