@@ -1,6 +1,8 @@
 // Each particle's neighbours, listed once per step by the grid phase of the CPU builds (cpu and host) and
-// read by density, forces and mirror walls (grid.h, for_each_neighbour). Two ways to the same list; the
-// back end times both and uses the faster (neighbour_list_choice.h):
+// read by density, forces and mirror walls (grid.h, for_each_neighbour). The back ends make the lists a
+// row of cells at a time (neighbour_rows.h); list_neighbours below lists one particle by searching its
+// ranges, where a row cannot be gathered. Two ways to the same list; the back end times both and uses the
+// faster (neighbour_list_choice.h):
 //   - with a branch per candidate: fast while the particles sit on a lattice, whose pattern the CPU's
 //     branch predictor learns;
 //   - without a branch, four candidates at a time (GCC vector extensions: SSE on x86-64): once the fluid
