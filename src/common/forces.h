@@ -24,6 +24,13 @@ namespace sph {
 // as r -> 0.
 constexpr float kPairEps2 = 0.01f;
 
+// XSPH [Monaghan 1989] pair weight, coef m_b W_ab / rho_ab with rho_ab = (rho_a + rho_b) / 2 (Poly6): particle a's
+// velocity correction is the sum of weight * (v_b - v_a). Shared by WCSPH's forces (coef: the fluid's xsph) and
+// PBF ([MM13] eq. 17, pbf.h, coef 1 and c applied to the sum). Dimensionless.
+SPH_HD inline float xsph_pair_weight(const KernelCoeffs& k, float coef, float mb, float r2, float rho_a, float rho_b) {
+  return coef * mb * poly6(k, r2) / (0.5f * (rho_a + rho_b));
+}
+
 // The force model's compile-time switches: the pressure form and whether any fluid has near pressure.
 template <PressureForm kForm, bool kNear>
 struct ForceModel {
@@ -143,7 +150,7 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
       acc -= (kappa * mb / side_a.mass * poly6(k, r2)) * xab;
     }
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
-      dv -= (fa.xsph * mb * poly6(k, r2) / (0.5f * (side_a.rho + side_b.rho))) * vab;
+      dv -= xsph_pair_weight(k, fa.xsph, mb, r2, side_a.rho, side_b.rho) * vab;
     }
   });
   // Mirror walls: the ghosts of the neighbours, the particle's own included, add pressure, near pressure and

@@ -15,6 +15,7 @@
 // the support h (k h^2, epsilon / h^2), so a scene behaves the same at every resolution.
 #pragma once
 
+#include "forces.h"
 #include "grid.h"
 #include "kernels.h"
 #include "params.h"
@@ -105,7 +106,7 @@ SPH_HD inline Vec3 pbf_xsph(const SimConstants& c, const GridView& grid, const P
   Vec3 dv{0.0f, 0.0f, 0.0f};
   for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3, float r2) {
     if (r2 <= 0.0f) return;
-    dv += (c.fluids[p.fluid[j]].mass * poly6(k, r2) / (0.5f * (rho_i + p.density[j]))) * (vel[j] - vi);
+    dv += xsph_pair_weight(k, 1.0f, c.fluids[p.fluid[j]].mass, r2, rho_i, p.density[j]) * (vel[j] - vi);
   });
   return params.xsph_c * dv;
 }
