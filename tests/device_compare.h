@@ -144,7 +144,7 @@ class ProbedCpu final : public sph::Backend {
   void upload(const sph::ParticleState& s) override { cpu_.upload(s); }
   void initialise_forces() override { cpu_.initialise_forces(); }
   void step(float dt) override {
-    for (const sph::Phase p : sph::kStepPhases) step_phase(p, dt);
+    for (const sph::Phase p : sph::step_phases(cpu_.constants().solver)) step_phase(p, dt);
   }
   void step_phase(sph::Phase p, float dt) override {
     if (p == sph::Phase::Boundaries) look_at_shapes(dt);
@@ -156,6 +156,7 @@ class ProbedCpu final : public sph::Backend {
   std::size_t size() const override { return cpu_.size(); }
   sph::Diagnostics diagnose() override { return cpu_.diagnose(); }
   const sph::PhaseTimes& phase_times() const override { return cpu_.phase_times(); }
+  sph::SolverStats solver_stats() const override { return cpu_.solver_stats(); }
   void set_constants(const sph::SimConstants& c) override { cpu_.set_constants(c); }
 
  private:
@@ -193,14 +194,14 @@ class ProbedCpu final : public sph::Backend {
 
 // Runs the phases of one step one at a time on the reference and on the device back end from the same
 // particles, and checks after each phase that every field agrees. Returns the reference's state after each
-// phase (kStepPhases order) for the callers' checks that the case exercises what it claims.
+// phase (step_phases(c.solver) order) for the callers' checks that the case exercises what it claims.
 inline std::vector<sph::ParticleState> compare_phases(const sph::SimConstants& c, const sph::ParticleState& input, float dt) {
   sph::CpuBackend cpu(c);
   std::unique_ptr<sph::Backend> dev = sph::backend_factory(device_name())(c);
   cpu.upload(input);
   dev->upload(input);
   std::vector<sph::ParticleState> after;
-  for (const sph::Phase p : sph::kStepPhases) {
+  for (const sph::Phase p : sph::step_phases(c.solver)) {
     cpu.step_phase(p, dt);
     dev->step_phase(p, dt);
     const sph::ParticleState& a = cpu.download();

@@ -21,6 +21,13 @@
 
 namespace {
 
+// The paper's constraint (clamp_expansion = 0), which these tests check; the solver's default clamps.
+sph::PbfConstants paper_params() {
+  sph::PbfConstants p = sph::pbf_defaults();
+  p.clamp_expansion = 0;
+  return p;
+}
+
 using sph::Vec3;
 using sph_test::FormulaCloud;
 
@@ -48,7 +55,7 @@ void compute_density(FormulaCloud& cloud) {
   for (int32_t i = 0; i < cloud.size(); ++i) sph::density_of(cloud.c(), cloud.grid(), p, i, 0.0f);
 }
 
-std::vector<float> lambdas(FormulaCloud& cloud, const sph::PbfParams& params) {
+std::vector<float> lambdas(FormulaCloud& cloud, const sph::PbfConstants& params) {
   sph::ParticleView p = cloud.view();
   std::vector<float> out(std::size_t(cloud.size()));
   for (int32_t i = 0; i < cloud.size(); ++i)
@@ -73,7 +80,7 @@ bool full_neighbourhood(Vec3 x, int n, float d) {
 TEST_CASE("PBF lambda: zero at rest density, its sign follows -C, and it equals its formula", "[pbf]") {
   const float rho0 = float(lattice_density(kSpacing));
   const int n = 8;
-  const sph::PbfParams params;
+  const sph::PbfConstants params = paper_params();
   for (float stretch : {1.0f, 1.04f, 0.96f}) {
     const float d = kSpacing * stretch;
     FormulaCloud cloud(sph_test::cubic_lattice(n, d, kOrigin), kH, kMass, rho0);
@@ -111,7 +118,7 @@ TEST_CASE("PBF lambda: zero at rest density, its sign follows -C, and it equals 
       if (stretch == 1.0f) {
         CHECK(std::fabs(constraint) < 1e-5);
         CHECK(std::fabs(got) <= 1e-5f * h2);
-        // The bulk's denominator sum_k |grad_k C|^2, which PbfParams::relaxation is measured against.
+        // The bulk's denominator sum_k |grad_k C|^2, which PbfConstants::relaxation is measured against.
         INFO("bulk sum |grad C|^2 = " << g2 * h2 << " / h^2");
         CHECK(g2 * h2 > 1.3);
         CHECK(g2 * h2 < 1.7);
@@ -125,7 +132,7 @@ TEST_CASE("PBF lambda: zero at rest density, its sign follows -C, and it equals 
 }
 
 TEST_CASE("PBF lambda of an isolated particle with epsilon = 0 is 0, not a division by zero", "[pbf]") {
-  sph::PbfParams params;
+  sph::PbfConstants params = paper_params();
   params.relaxation = 0.0f;
   FormulaCloud cloud({Vec3{0.1f, 0.1f, 0.1f}}, kH, kMass, 1000.0f);
   compute_density(cloud);
@@ -141,7 +148,7 @@ TEST_CASE("PBF lambda of an isolated particle with epsilon = 0 is 0, not a divis
 }
 
 TEST_CASE("PBF position corrections are equal and opposite and sum to zero", "[pbf]") {
-  const sph::PbfParams params;
+  const sph::PbfConstants params = paper_params();
   SECTION("a pair, with s_corr") {
     FormulaCloud cloud({Vec3{0.1f, 0.1f, 0.1f}, Vec3{0.1f + 0.3f * float(kH), 0.1f, 0.1f}}, kH, kMass, 1000.0f);
     compute_density(cloud);
@@ -178,7 +185,7 @@ TEST_CASE("PBF position corrections are equal and opposite and sum to zero", "[p
 }
 
 TEST_CASE("PBF s_corr is negative, -k at dq and zero at and beyond h", "[pbf]") {
-  const sph::PbfParams params;
+  const sph::PbfConstants params = paper_params();
   for (double h : {1.0, kH}) {
     const sph::KernelCoeffs k = sph::make_kernel_coeffs(h);
     const float hf = float(h);
@@ -206,7 +213,7 @@ TEST_CASE("one PBF Jacobi iteration reduces the compression of a lattice, and th
   const float d = 0.98f * kSpacing;  // 6% over rest density in the bulk
   for (int32_t clamp : {1, 0}) {
     FormulaCloud cloud(sph_test::cubic_lattice(n, d, kOrigin), kH, kMass, rho0);
-    sph::PbfParams params;
+    sph::PbfConstants params = paper_params();
     params.clamp_expansion = clamp;
     // Compression error: mean of max(C, 0) over all particles, and its largest value in the bulk.
     const auto errors = [&](double& mean, double& bulk_max) {
@@ -250,7 +257,7 @@ TEST_CASE("one PBF Jacobi iteration reduces the compression of a lattice, and th
       CHECK(bulk4 < 0.01 * bulk0);
     } else {
       // The surface's C < 0 (missing neighbours) gives lambda > 0, which pulls the surface layer inwards: the
-      // bulk ends up more compressed than before. Why PbfParams::clamp_expansion exists.
+      // bulk ends up more compressed than before. Why PbfConstants::clamp_expansion exists.
       CHECK(mean1 > 2.0 * mean0);
     }
   }
@@ -292,7 +299,7 @@ TEST_CASE("PBF vorticity of a rigid rotation is 2 w in the interior", "[pbf]") {
 
   // Uniform vorticity: grad |omega| is exactly zero, so confinement has no direction and adds nothing (the
   // guard on |eta|, rather than a normalisation of a zero vector).
-  sph::PbfParams params;
+  sph::PbfConstants params = paper_params();
   params.vorticity_epsilon = 0.5f;
   const std::vector<Vec3> uniform(omega.size(), 2.0f * w);
   for (int32_t i = 0; i < cloud.size(); ++i) {
@@ -313,7 +320,7 @@ TEST_CASE("PBF vorticity confinement pushes across the vorticity, towards strong
     const float x = p.pos[i].x - kOrigin.x;
     omega[std::size_t(i)] = Vec3{0.0f, 0.0f, 2.0f + 40.0f * x};
   }
-  sph::PbfParams params;
+  sph::PbfConstants params = paper_params();
   for (int32_t i = 0; i < cloud.size(); ++i) {
     CHECK(length(sph::pbf_vorticity_confinement(cloud.c(), cloud.grid(), p, omega.data(), params, i)) == 0.0f);
   }
@@ -340,7 +347,7 @@ TEST_CASE("PBF XSPH leaves a rigid translation alone and conserves momentum", "[
   FormulaCloud cloud(pos, kH, kMass, 1000.0f);
   compute_density(cloud);
   sph::ParticleView p = cloud.view();
-  const sph::PbfParams params;
+  const sph::PbfConstants params = paper_params();
   std::vector<Vec3> vel(pos.size(), Vec3{0.3f, -0.2f, 0.9f});
   for (int32_t i = 0; i < cloud.size(); ++i)
     REQUIRE(length(sph::pbf_xsph(cloud.c(), cloud.grid(), p, vel.data(), params, i)) == 0.0f);

@@ -71,7 +71,8 @@ const char* limit_name(StepLimit l) {
 
 const char* const kMetricsHeader =
     "time,dt,step,kinetic_energy,potential_energy,energy_budget,density_error_mean,density_error_max,v_max,front_x,"
-    "top_y,height_at_x0,particles,outside_domain,wall_ms";
+    "top_y,height_at_x0,particles,outside_domain,wall_ms,solver_iterations,solver_density_error,divergence_iterations,"
+    "divergence_error";
 
 // Writes one row; returns the particles outside the domain (the summary reports the most of any row).
 long write_metrics_row(MetricsFile& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
@@ -80,6 +81,9 @@ long write_metrics_row(MetricsFile& csv, const Simulation& sim, const Metrics& m
   row << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ',' << m.potential_energy
       << ',' << sim.energy_budget() << ',' << m.density_error_mean << ',' << m.density_error_max << ',' << m.v_max << ',' << m.front_x << ',' << m.top_y
       << ',' << m.height_at_x0 << ',' << m.particles << ',' << m.outside_domain << ',' << wall_ms;
+  const SolverStats& st = sim.solver_stats();  // the last step's solves (zero under WCSPH)
+  row << ',' << st.density_iterations << ',' << st.density_error << ',' << st.divergence_iterations << ','
+      << st.divergence_error;
   csv.write_row(row.str());
   return m.outside_domain;
 }
@@ -127,7 +131,9 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << ", lattice kernel sum: " << st.lattice_density << "\n"
             << "grid: cells of " << st.constants.grid.cell_size << " m, only where particles are; domain "
             << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz << " cells\n"
-            << "integrator: " << integrator_name(scene.integrator) << ", speed bound: " << sim.speed_bound()
+            << "solver: " << solver_name(scene.solver)
+            << (scene.solver == Solver::Wcsph ? std::string(", integrator: ") + integrator_name(scene.integrator) : std::string())
+            << ", speed bound: " << sim.speed_bound()
             << " m/s, energy budget: " << sim.energy_budget() << " J\n"
             << (sim.relaxation().ran ? sim.relaxation().summary() + "\n" : std::string())
             << (restart ? "restart: " + o.restart + " (frame " + std::to_string(restart->info.frame_index) + ", step " +
@@ -137,6 +143,38 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << ", output: " << o.out << "\n";
   for (const std::string& line : st.report) std::cout << "setup: " << line << "\n";
   std::cout.flush();
+}
+
+// The iterative solvers' lines of the summary: iterations per step (mean and maximum), the largest error a
+// solve ended at, and a warning on standard error for every solve that stopped at its cap above tolerance.
+void print_solver_summary(const Simulation& sim) {
+  const Scene& scene = sim.scene();
+  const SolverTotals& t = sim.solver_totals();
+  std::cout << "solver: " << solver_name(scene.solver) << "\n";
+  if (scene.solver == Solver::Wcsph || t.steps == 0) return;
+  const double steps = double(t.steps);
+  const bool dfsph = scene.solver == Solver::Dfsph;
+  std::cout << (dfsph ? "density_solver_iterations" : "constraint_iterations") << ": mean "
+            << double(t.density_iterations) / steps << ", max " << t.max_density_iterations << "\n";
+  if (dfsph)
+    std::cout << "divergence_solver_iterations: mean " << double(t.divergence_iterations) / steps << ", max "
+              << t.max_divergence_iterations << "\n";
+  std::cout << "solver_density_error_max: " << t.max_density_error << "\n"
+            << "solver_capped_steps: " << t.density_capped_steps + t.divergence_capped_steps << "\n";
+  if (t.density_capped_steps > 0)
+    std::cerr << "warning: the " << (dfsph ? "density solver" : "constraint solve") << " did not converge in "
+              << t.density_capped_steps << " of " << t.steps << " steps: it stopped at "
+              << (dfsph ? "dfsph.max_iterations = " + std::to_string(scene.dfsph.max_iterations)
+                        : "pbf.iterations = " + std::to_string(scene.pbf.iterations))
+              << " above its tolerance ("
+              << (dfsph ? double(scene.dfsph.density_tolerance) : double(scene.pbf.density_tolerance))
+              << "); the largest mean compression left was " << t.max_density_error
+              << " (solver_density_error in metrics.csv). Raise the iteration cap or lower the time step\n";
+  if (t.divergence_capped_steps > 0)
+    std::cerr << "warning: the divergence solver did not converge in " << t.divergence_capped_steps << " of "
+              << t.steps << " steps: it stopped at dfsph.max_iterations = " << scene.dfsph.max_iterations
+              << " above dfsph.divergence_tolerance = " << scene.dfsph.divergence_tolerance
+              << " (divergence_error in metrics.csv). Raise the iteration cap or lower the time step\n";
 }
 
 // The summary: figures of the whole run. ms_per_step is the median wall time of one step (benchmarks
@@ -156,6 +194,7 @@ void print_summary(Simulation& sim, const Metrics& m, const std::vector<double>&
             << "density_error_max: " << m.density_error_max << "\n"
             << "front_x: " << m.front_x << "\n"
             << "particles_outside_domain: " << m.outside_domain << " (most in a metrics row: " << most_outside << ")\n";
+  print_solver_summary(sim);
   const PhaseTimes& pt = sim.backend().phase_times();
   if (pt.steps > 0) {
     std::cout << "phase_ms_per_step_mean:";

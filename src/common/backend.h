@@ -1,5 +1,6 @@
 // The interface every back end implements (cpu: serial reference; host: device code on OpenMP; cuda).
-// A back end owns the particle arrays in its own layout and runs the phases of one step, in this order:
+// A back end owns the particle arrays in its own layout and runs the phases of one step of the scene's
+// solver (src/solvers/), in the order step_phases() gives; WCSPH's is
 //   predict -> build grid -> density -> pressure -> forces -> correct -> boundaries -> recycle
 // (emission is requested by the Simulation between steps through emit()).
 #pragma once
@@ -7,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,11 +18,68 @@
 
 namespace sph {
 
-enum class Phase : int { Predict, BuildGrid, Density, Pressure, Forces, Correct, Boundaries, Recycle, Emit, Count };
+enum class Phase : int {
+  Predict,
+  BuildGrid,
+  Density,
+  Pressure,
+  Forces,
+  Correct,
+  Boundaries,
+  Recycle,
+  DensitySolve,     // DFSPH's constant-density solver ([BK15] algorithm 3)
+  DivergenceSolve,  // DFSPH's divergence-free solver ([BK15] algorithm 2)
+  ConstraintSolve,  // PBF's density constraint iterations ([MM13] algorithm 1)
+  Emit,
+  Count
+};
 const char* phase_name(Phase p);
-// The phases of step(dt), in the order it runs them.
+// The phases of a WCSPH step(dt), in the order it runs them.
 constexpr Phase kStepPhases[] = {Phase::Predict, Phase::BuildGrid, Phase::Density,    Phase::Pressure,
                                  Phase::Forces,  Phase::Correct,   Phase::Boundaries, Phase::Recycle};
+// DFSPH ([BK15] algorithm 1, src/solvers/dfsph.h, begun at its neighbourhood update so that a step starts
+// from any uploaded or emitted state): the grid, density and alpha, the divergence solver, non-pressure
+// forces, v* = v + dt a, the density solver, x += dt v* (and the shapes).
+constexpr Phase kDfsphPhases[] = {Phase::BuildGrid, Phase::Density,      Phase::DivergenceSolve,
+                                  Phase::Forces,    Phase::Predict,      Phase::DensitySolve,
+                                  Phase::Correct,   Phase::Boundaries,   Phase::Recycle};
+// PBF ([MM13] algorithm 1, src/solvers/pbf.h): v += dt a_ext, x* = x + dt v, the grid on x*, the constraint
+// iterations (with the shapes), v = (x* - x) / dt, vorticity confinement and XSPH.
+constexpr Phase kPbfPhases[] = {Phase::Predict, Phase::BuildGrid, Phase::ConstraintSolve, Phase::Correct,
+                                Phase::Forces,  Phase::Recycle};
+
+// The phases of a step of solver s, in order: begin() and end() for a range-for.
+struct PhaseList {
+  const Phase* first;
+  const Phase* last;
+  const Phase* begin() const { return first; }
+  const Phase* end() const { return last; }
+  bool contains(Phase p) const {
+    for (const Phase q : *this)
+      if (q == p) return true;
+    return false;
+  }
+};
+inline PhaseList step_phases(Solver s) {
+  switch (s) {
+    case Solver::Dfsph: return PhaseList{std::begin(kDfsphPhases), std::end(kDfsphPhases)};
+    case Solver::Pbf: return PhaseList{std::begin(kPbfPhases), std::end(kPbfPhases)};
+    case Solver::Wcsph: break;
+  }
+  return PhaseList{std::begin(kStepPhases), std::end(kStepPhases)};
+}
+
+// What the iterative solvers did in the last step (zero for WCSPH): iterations, and the error each solve
+// ended at, as the fractions the tolerances are given in (params.h: DfsphConstants, PbfConstants). capped: the
+// solve stopped at its iteration cap above its tolerance.
+struct SolverStats {
+  int32_t density_iterations = 0;     // DFSPH's density solver, PBF's constraint iterations
+  int32_t divergence_iterations = 0;  // DFSPH's divergence solver
+  double density_error = 0.0;         // mean compression max(rho / rho0 - 1, 0) after the solve
+  double divergence_error = 0.0;      // DFSPH: mean max(dt D rho / Dt, 0) / rho0 after the solve
+  bool density_capped = false;
+  bool divergence_capped = false;
+};
 
 // Accumulated wall time per phase, for the runner's summary, the benchmark and the demo panel.
 struct PhaseTimes {
@@ -58,16 +117,18 @@ class Backend {
   virtual std::string name() const = 0;
   virtual void upload(const ParticleState& state) = 0;   // replaces the particles
   virtual void initialise_forces() = 0;                   // accelerations of the uploaded state, no motion
-  virtual void step(float dt) = 0;                        // the phases of kStepPhases, in order
-  // Runs one phase of kStepPhases alone, exactly as step(dt) runs it, so that tests can compare back ends
-  // phase by phase; step(dt) is step_phase(p, dt) for each p in order, and each is timed as in a step.
-  // Throws std::invalid_argument for Phase::Emit or Phase::Count.
+  virtual void step(float dt) = 0;                        // the phases of step_phases(solver), in order
+  // Runs one phase of the solver's step alone, exactly as step(dt) runs it, so that tests can compare back
+  // ends phase by phase; step(dt) is step_phase(p, dt) for each p in order, and each is timed as in a step.
+  // Throws std::invalid_argument for a phase that is not one of the solver's steps (Emit, Count included).
   virtual void step_phase(Phase p, float dt) = 0;
   virtual void emit(const std::vector<Spawn>& spawns) = 0;
   virtual const ParticleState& download() = 0;            // current particles, in the back end's order
   virtual std::size_t size() const = 0;
   virtual Diagnostics diagnose() = 0;
   virtual const PhaseTimes& phase_times() const = 0;
+  // What the last step's iterative solves did (SolverStats; all zero under WCSPH).
+  virtual SolverStats solver_stats() const = 0;
   // Replaces the constants between steps (live parameters: viscosity, stiffness, gravity, user force).
   // The grid geometry must stay the same.
   virtual void set_constants(const SimConstants& constants) = 0;

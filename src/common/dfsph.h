@@ -1,19 +1,30 @@
 // Per-particle formulas of Divergence-Free SPH [BK15] (Bender & Koschier 2015, reproduced in seed 000, whose
 // equation numbers are cited: "seed eq. N"). The solver phases (issue 12) call them in their loops over
-// particles; they read the particle and grid views only, and the arrays DFSPH adds (alpha, kappa) are passed
-// as raw pointers, so they are not ParticleState fields. Each returns its value: the phase stores it.
+// particles (src/solvers/dfsph.h); they read the particle and grid views, and the arrays of velocities and
+// stiffnesses they are given. Each returns its value: the phase stores it.
 //
 // Kernel: the cubic spline (kernels.h, support h) for W and grad W alike, as [BK15] (seed 3.4: the density
 // and its rate must use one kernel for the predictions and corrections to agree). Neighbours: every particle
 // within h (for_each_neighbour, the particle itself included); the particle itself, and any particle at the
-// same position, adds W but no gradient (there is no direction). Wall ghosts (mirror_walls.h) are not yet
-// included: docs/solvers_plan.md.
+// same position, adds W but no gradient (there is no direction). Positions and masses come from the grid
+// phase's packed records (pos_mass).
+//
+// Walls: with mirror walls (sph.walls = "mirror") the neighbours' wall ghosts (mirror_walls.h) sample the
+// solid beyond the wall, as boundary particles do in [BK15] (their boundary handling is Akinci et al. 2012's):
+// a ghost adds its mass to the density, is at rest (the walls do not move) in the density rate, and pushes
+// with the particle's own stiffness only, a_i -= m_b (kappa_i / rho_i) grad W_ib (the solid has no pressure of
+// its own). alpha counts the ghosts where the particle's own velocity change acts on them (|sum m grad W|^2)
+// but not among the neighbours that move in response (sum |m grad W|^2): with those three choices alpha is
+// exactly the Jacobi diagonal d(D rho_i / Dt) / d kappa_i. Ghosts that moved with their particles (mirrored
+// velocities) and pushed with its stiffness made that diagonal up to twice alpha's at a wall and more in a
+// corner, and the iteration diverged there (a resting column's corners, within 6 steps).
 //
 // Units (SI): m [kg], rho [kg/m^3], grad W [1/m^4], alpha [m^5/kg], kappa [m^2/s^2], acceleration [m/s^2].
 #pragma once
 
 #include "grid.h"
 #include "kernels.h"
+#include "mirror_walls.h"
 #include "params.h"
 
 namespace sph {
@@ -28,47 +39,63 @@ constexpr float kDfsphAlphaEps = 1e-6f;
 // Seed eq. 3: dt <= 0.4 d / v_max, d the particle diameter (spacing).
 constexpr float kDfsphCflFactor = 0.4f;
 
-// Seed eq. 7: rho_i = sum_j m_j W_ij with the cubic spline, the particle itself included. [kg/m^3]
+// Seed eq. 7: rho_i = sum_j m_j W_ij with the cubic spline, the particle itself included, plus the wall
+// ghosts. [kg/m^3]
 SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   float rho = 0.0f;
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3, float r2) {
-    rho += c.fluids[p.fluid[j]].mass * cubic_spline(k, sqrtf(r2));
+  for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3, float r2) {
+    rho += p.pos_mass[j].w * cubic_spline(k, sqrtf(r2));
+  });
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xyz(p.pos_mass[i])) : NearWalls{};
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) {
+    rho += p.pos_mass[j].w * cubic_spline(k, sqrtf(r2));
   });
   return rho;
 }
 
 // Seed eq. 9 ([BK15] alpha factor): alpha_i = rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2),
-// rho_i = p.density[i] (dfsph_density). Depends on positions only: computed once per step after the grid and
-// shared by both solvers. Returns 0 where the denominator is below kDfsphAlphaEps (isolated particle). [m^5/kg]
+// rho_i = p.density[i] (dfsph_density); wall ghosts in the first sum only (see above). Depends on positions
+// only: computed once per step after the grid and shared by both solvers. Returns 0 where the denominator is below kDfsphAlphaEps
+// (isolated particle). [m^5/kg]
 SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   Vec3 sum_grad{0.0f, 0.0f, 0.0f};  // sum_j m_j grad W_ij [kg/m^4]
   float sum_grad2 = 0.0f;           // sum_j |m_j grad W_ij|^2 [kg^2/m^8]
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+  for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    const Vec3 g = (c.fluids[p.fluid[j]].mass * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
+    const Vec3 g = (p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
     sum_grad += g;
     sum_grad2 += length2(g);
   });
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+    if (r2 > 0.0f) sum_grad += (p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+  });
   const float denominator = length2(sum_grad) + sum_grad2;
-  const float scale = c.fluids[p.fluid[i]].mass * k.cubic / k.h;
+  const float scale = p.pos_mass[i].w * k.cubic / k.h;
   if (denominator <= kDfsphAlphaEps * scale * scale) return 0.0f;
   return p.density[i] / denominator;
 }
 
 // Seed eq. 18: D rho_i / Dt = sum_j m_j (v_i - v_j) . grad W_ij, with the velocities vel (the solver's
-// predicted v*, not necessarily p.vel). Positive: compression. Exact zero for a rigid translation; for a
-// rigid rotation each pair's term is zero (v_i - v_j is perpendicular to x_ij), so zero to round-off.
-// [kg/(m^3 s)]
+// predicted v*, not necessarily p.vel); wall ghosts are at rest, so a particle approaching a wall compresses.
+// Positive: compression. Exact zero for a rigid translation without walls; for a rigid rotation
+// each pair's term is zero (v_i - v_j is perpendicular to x_ij), so zero to round-off. [kg/(m^3 s)]
 SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                        const Vec3* vel, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const Vec3 vi = vel[i];
   float rate = 0.0f;
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+  for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    rate += c.fluids[p.fluid[j]].mass * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi - vel[j], xij);
+    rate += p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi - vel[j], xij);
+  });
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+    if (r2 > 0.0f) rate += p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi, xi - xg);
   });
   return rate;
 }
@@ -91,18 +118,24 @@ SPH_HD inline float dfsph_divergence_stiffness(float density_rate, float alpha, 
 }
 
 // Seed eqs. 15-17 (the seed prints kappa_j / rho_i and drops the minus sign of eq. 16; [BK15] has both right):
-// a_i = -sum_j m_j (kappa_i / rho_i + kappa_j / rho_j) grad W_ij, kappa either stiffness, rho = p.density.
-// The solver updates v_i += dt a_i. Each pair term is antisymmetric (grad W_ji = -grad W_ij), so
-// sum_i m_i a_i = 0: the pressure solves conserve linear momentum. [m/s^2]
+// a_i = -sum_j m_j (kappa_i / rho_i + kappa_j / rho_j) grad W_ij, kappa either stiffness, rho = p.density; a
+// wall ghost pushes with kappa_i / rho_i alone (see above). The solver updates v_i += dt a_i. Each pair term of two
+// particles is antisymmetric (grad W_ji = -grad W_ij), so without walls sum_i m_i a_i = 0: the pressure
+// solves conserve linear momentum (the walls take up what the ghosts give). [m/s^2]
 SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                                const float* kappa, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const float ki = kappa[i] / p.density[i];
   Vec3 acc{0.0f, 0.0f, 0.0f};
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+  for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    const float s = c.fluids[p.fluid[j]].mass * (ki + kappa[j] / p.density[j]);
+    const float s = p.pos_mass[j].w * (ki + kappa[j] / p.density[j]);
     acc -= (s * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
+  });
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+    if (r2 > 0.0f) acc -= (p.pos_mass[j].w * (ki + kappa[j] / p.density[j]) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
   return acc;
 }

@@ -31,12 +31,26 @@ SPH_HD inline float xsph_pair_weight(const KernelCoeffs& k, float coef, float mb
   return coef * mb * poly6(k, r2) / (0.5f * (rho_a + rho_b));
 }
 
-// The force model's compile-time switches: the pressure form and whether any fluid has near pressure.
-template <PressureForm kForm, bool kNear>
+// The user force field at x (UserForce, params.h): towards the point (strength > 0), fading linearly to zero
+// at the radius; zero outside it and at the point itself. [m/s^2]
+SPH_HD inline Vec3 user_force_acceleration(const SimConstants& c, Vec3 x) {
+  const Vec3 to_point = c.user_force.point - x;
+  const float dist = length(to_point);
+  if (!(dist < c.user_force.radius && dist > 0.0f)) return Vec3{0.0f, 0.0f, 0.0f};
+  return (c.user_force.strength * (1.0f - dist / c.user_force.radius) / dist) * to_point;
+}
+
+// The force model's compile-time switches: the pressure form, whether any fluid has near pressure, and
+// whether there is a pressure term at all (kPressure = false: the non-pressure forces of the incompressible
+// solvers, src/solvers/dfsph.h, whose pressure is their own solve's).
+template <PressureForm kForm, bool kNear, bool kPressure = true>
 struct ForceModel {
   static constexpr PressureForm form = kForm;
   static constexpr bool near = kNear;
+  static constexpr bool pressure = kPressure;
 };
+// Viscosity, surface tension, gravity and the user force; no pressure, no near pressure.
+using NonPressureForces = ForceModel<PressureForm::MonaghanSymmetric, false, false>;
 
 // Calls f(ForceModel<...>{}) with the model of c: one dispatch per loop over particles, not per pair.
 template <class F>
@@ -89,9 +103,10 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
   const float mb = b.mass;
   const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
 
-  float s = pressure_pair<Model::form>(mb, a.pressure, a.pressure_rho2, a.inv_rho, b.pressure, b.pressure_rho2,
-                                       b.inv_rho) * grad;
-  if (Model::near)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
+  float s = Model::pressure ? pressure_pair<Model::form>(mb, a.pressure, a.pressure_rho2, a.inv_rho, b.pressure,
+                                                         b.pressure_rho2, b.inv_rho) * grad
+                            : 0.0f;
+  if (Model::near && Model::pressure)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
     s += pressure_pair<Model::form>(mb, a.near_pressure, a.near_pressure_rho2, a.inv_rho, b.near_pressure,
                                     b.near_pressure_rho2, b.inv_rho) * near_dwdr(k, r) * inv_r;
 
@@ -160,20 +175,17 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
     if (r2 <= 0.0f) return;  // a ghost on the particle itself: no direction to push along
     PairSide ghost = particle_side(c, p, b);  // b's own, but the pressure extrapolated to the ghost
     const Vec3 vg = mirror_velocity(walls, image, ghost.vel);
-    ghost.pressure = ghost_pressure(c, ghost.pressure, ghost.rho, xyz(p.pos_mass[b]), xg);
-    ghost.pressure_rho2 = over_rho2(ghost.pressure, ghost.inv_rho);
+    if (Model::pressure) {
+      ghost.pressure = ghost_pressure(c, ghost.pressure, ghost.rho, xyz(p.pos_mass[b]), xg);
+      ghost.pressure_rho2 = over_rho2(ghost.pressure, ghost.inv_rho);
+    }
     const Vec3 xag = xa - xg;
     Vec3 pair{0.0f, 0.0f, 0.0f};
     pressure_viscosity_pair<Model>(c, side_a, ghost, xag, r2, va - vg, pair);
     acc += push_only(walls, xg, pair);
   });
   acc += c.gravity;  // external forces, thesis eq. 2.25
-  if (c.user_force.strength != 0.0f) {
-    const Vec3 to_point = c.user_force.point - xa;
-    const float dist = length(to_point);
-    if (dist < c.user_force.radius && dist > 0.0f)
-      acc += (c.user_force.strength * (1.0f - dist / c.user_force.radius) / dist) * to_point;
-  }
+  if (c.user_force.strength != 0.0f) acc += user_force_acceleration(c, xa);
   p.acc[a] = acc;
   if (c.xsph_enabled) p.xsph_dv[a] = dv;
 }

@@ -12,6 +12,7 @@
 #include "frame_reader.h"
 #include "grid.h"
 #include "obstacle_contacts.h"
+#include "time_step.h"
 #include "viscous_limit.h"
 
 namespace sph {
@@ -40,6 +41,23 @@ double cohesion_from_surface_tension(double sigma, double mass, double rest_dens
 }
 
 namespace {
+
+// A time step the incompressible solvers cannot take (time_step.h, incompressible_step_bound): the fixed dt,
+// or the adaptive step's max, above sqrt(d / |g|).
+void check_incompressible_step(const Scene& scene, double spacing) {
+  if (scene.solver == Solver::Wcsph) return;
+  const Vec3d& g = scene.gravity;
+  const double bound = incompressible_step_bound(spacing, std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+  const bool fixed = scene.time_step.mode == TimeStepMode::Fixed;
+  const double dt = fixed ? scene.time_step.dt : scene.time_step.max;
+  if (dt <= bound) return;
+  std::ostringstream os;
+  os << scene.source << ": " << (fixed ? "time_step.dt" : "time_step.max") << ": " << dt << " s is too long a step for solver \""
+     << solver_name(scene.solver) << "\" at spacing " << spacing << " m: in one step gravity alone would move a particle at "
+     << "rest by more than half a spacing, which the pressure solve cannot undo. Allowed: at most sqrt(d / |g|) = "
+     << bound << " s";
+  throw SceneError(os.str());
+}
 
 Vec3 f3(const Vec3d& v) { return Vec3{float(v[0]), float(v[1]), float(v[2])}; }
 
@@ -197,6 +215,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   // The kernel sum over the lattice depends on h / d only: computed at d = 1 it cannot overflow.
   s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing);
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
+  check_incompressible_step(scene, s.spacing);
 
   SimConstants& c = s.constants;
   c.kernel = make_kernel_coeffs(s.h);
@@ -207,6 +226,9 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   c.integrator = scene.integrator;
   c.clamp_negative_pressure = scene.clamp_negative_pressure;
   c.mirror_walls = scene.mirror_walls;
+  c.solver = scene.solver;
+  c.dfsph = scene.dfsph;
+  c.pbf = scene.pbf;
   c.gravity = f3(scene.gravity);
   c.num_fluids = int32_t(scene.fluids.size());
   const double d3 = s.spacing * s.spacing * s.spacing;

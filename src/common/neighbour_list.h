@@ -24,7 +24,10 @@ namespace sph {
 // Slots of a particle's list: twice the neighbours a particle of the densest fluid has at rest
 // (4/3 pi h^3 rho0 / m), at least 32, a multiple of 4; 0 (no lists: search in every loop) beyond 256,
 // where the lists' memory would outweigh the search they save.
+// PBF gets none: its iterations move the particles after the grid phase, so a list made there no longer holds
+// the particles within h, and every loop must search (as on a GPU) for the back ends to agree.
 inline int32_t neighbour_list_capacity(const SimConstants& c) {
+  if (c.solver == Solver::Pbf) return 0;
   double expected = 0.0;
   for (int32_t f = 0; f < c.num_fluids; ++f) {
     const double h = c.kernel.h;

@@ -23,6 +23,57 @@ enum class PressureForm : int32_t { MonaghanSymmetric, Mueller };    // thesis e
 // names no laminar term (older scenes); Monaghan's artificial viscosity (thesis eq. 2.21) is added to any of
 // them wherever a fluid's alpha > 0 (SimConstants::artificial_enabled).
 enum class ViscosityModel : int32_t { None, Mueller, Morris, Artificial };
+// The pressure solver of a step (src/solvers/): weakly compressible SPH with an equation of state (thesis
+// chapter 2), divergence-free SPH [BK15] (src/common/dfsph.h) or position-based fluids [MM13] (pbf.h).
+enum class Solver : int32_t { Wcsph, Dfsph, Pbf };
+
+// DFSPH's solver settings (scene block "dfsph"). Tolerances are fractions of the rest density: the density
+// solver stops when the mean compression (rho* - rho0) / rho0 is at most density_tolerance ([BK15] eta, 0.01%),
+// the divergence solver when the mean dt (D rho / Dt) / rho0 is at most divergence_tolerance (0.1% per step).
+// Each solver runs at least min_iterations and at most max_iterations (a step that reaches the cap is
+// counted and reported); the error is checked every check_every iterations (one reduction each, a read on
+// a GPU), the same on every back end so that they stay bit-identical.
+struct DfsphConstants {
+  float density_tolerance;     // eta / rho0, > 0
+  float divergence_tolerance;  // eta_v dt / rho0, > 0
+  int32_t min_iterations;      // density solver; the divergence solver runs at least one
+  int32_t max_iterations;      // both solvers
+  int32_t check_every;
+  int32_t divergence_solver;   // 1: run it (0 for the comparisons of [BK15] section 5)
+  int32_t warm_start;          // 1: start from the last step's pressures ([BK15] section 4.3)
+};
+
+// Position-based fluids' solver settings (scene block "pbf"), [MM13] with the paper's defaults.
+struct PbfConstants {
+  // Constraint force mixing epsilon of lambda, in units of 1 / h^2: epsilon = relaxation / h^2. In the bulk of
+  // a lattice with h = 1.95 d, sum |grad C|^2 is 1.5 / h^2 (tests/test_pbf_formulas.cpp), so 0.1 softens the
+  // bulk's lambda by 6% and bounds a particle with almost no neighbours to |lambda| <= 10 |C| h^2.
+  float relaxation;
+  // Artificial pressure s_corr = -k (W(r) / W(dq))^n, [MM13] section 4: k = 0.1, n = 4, dq = 0.1 h to 0.3 h.
+  // dq = 0.2 h, the middle of the paper's range: a pair at dq gets -k, a neighbour at the rest spacing
+  // (about h / 2) about 5% of it, so s_corr acts on pairs that come too close, not on the bulk at rest.
+  float scorr_k;
+  int32_t scorr_n;
+  float scorr_dq;  // dq / h
+  // 1: lambda sees max(C_i, 0), a one-sided constraint (as Bender et al.'s PositionBasedDynamics library):
+  // particles at a free surface, whose C < 0 only because neighbours are missing, are then not pulled
+  // together. 0: the paper's C_i. The free surface's pull makes a plain Jacobi iteration compress a resting
+  // blob (tests/test_pbf_formulas.cpp).
+  int32_t clamp_expansion;
+  float xsph_c;             // XSPH viscosity c, [MM13] section 5
+  float vorticity_epsilon;  // vorticity confinement strength [m/s] (a = eps N x omega), 0: off
+  int32_t iterations;       // constraint iterations per step (the most, with a tolerance)
+  float density_tolerance;  // stop early once the mean compression max(C, 0) is at most this; 0: always iterations
+};
+
+// [BK15]'s defaults: eta = 0.01% and eta_v = 0.1% (section 5), at least 2 density iterations (SPlisHSPlasH's
+// minimum: one iteration cannot both apply and re-measure the warm start), at most 100.
+constexpr DfsphConstants dfsph_defaults() { return DfsphConstants{1e-4f, 1e-3f, 2, 100, 1, 1, 1}; }
+
+// The paper's defaults ([MM13] sections 3 to 5) with the one-sided constraint, 4 iterations without a
+// tolerance: the dam-break target of issue 12.
+constexpr PbfConstants pbf_defaults() { return PbfConstants{0.1f, 0.1f, 4, 0.2f, 1, 0.01f, 0.0f, 4, 0.0f}; }
+
 enum class Integrator : int32_t {
   ExplicitEuler,            // thesis eq. 2.29, kept to show where it fails
   SemiImplicitEuler,        // thesis eq. 2.30
@@ -105,6 +156,9 @@ struct SimConstants {
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
   Vec3 gravity;
   UserForce user_force;
+  Solver solver;
+  DfsphConstants dfsph;
+  PbfConstants pbf;
   int32_t num_fluids;
   int32_t num_shapes;
   FluidConstants fluids[kMaxFluids];

@@ -36,10 +36,20 @@ struct Spawn {
 // reordered, downloaded or written to frames; a restart recomputes them.
 #define SPH_DERIVED_FIELDS(X) X(Vec4, pos_mass) X(Vec4, vel_inv_rho) X(float, pressure_rho2) X(float, near_pressure_rho2)
 
+// The incompressible solvers' per-particle unknowns (src/solvers/dfsph.h, pbf.h): scratch like the derived
+// fields, sized only while such a solver runs (fit_derived), written before every use within a step.
+// DFSPH: alpha [m^5/kg], kappa [m^2/s^2] and solver_error (each particle's share of the error the solver
+// checks). PBF: lambda [m^2], solver_error, delta_pos (the position correction [m], then the vorticity
+// confinement's acceleration [m/s^2]) and omega (vorticity [1/s]). DFSPH's warm start, which must survive
+// the reorder, is kept in the particle fields pressure and near_pressure (particle_view.h).
+#define SPH_SOLVER_FIELDS(X) \
+  X(float, alpha) X(float, kappa) X(float, lambda) X(float, solver_error) X(Vec3, delta_pos) X(Vec3, omega)
+
 struct ParticleState {
 #define SPH_DECLARE_FIELD(type, name) std::vector<type> name;
   SPH_PARTICLE_FIELDS(SPH_DECLARE_FIELD)
   SPH_DERIVED_FIELDS(SPH_DECLARE_FIELD)
+  SPH_SOLVER_FIELDS(SPH_DECLARE_FIELD)
 #undef SPH_DECLARE_FIELD
 
   std::size_t size() const { return pos.size(); }
@@ -51,11 +61,15 @@ struct ParticleState {
 #undef SPH_RESIZE_FIELD
   }
 
-  // Sizes the derived fields to the particle count (their values are written before every use).
-  void fit_derived() {
+  // Sizes the derived fields to the particle count (their values are written before every use), and the
+  // solver fields too when solver_fields is set (else frees them).
+  void fit_derived(bool solver_fields) {
 #define SPH_FIT_DERIVED_FIELD(type, name) name.resize(size());
     SPH_DERIVED_FIELDS(SPH_FIT_DERIVED_FIELD)
 #undef SPH_FIT_DERIVED_FIELD
+#define SPH_FIT_SOLVER_FIELD(type, name) name.resize(solver_fields ? size() : 0);
+    SPH_SOLVER_FIELDS(SPH_FIT_SOLVER_FIELD)
+#undef SPH_FIT_SOLVER_FIELD
   }
 
   // After a swap with a reordering buffer: takes back the derived fields, so that only one of the two
@@ -63,6 +77,7 @@ struct ParticleState {
   void take_derived(ParticleState& other) {
 #define SPH_TAKE_DERIVED_FIELD(type, name) name.swap(other.name);
     SPH_DERIVED_FIELDS(SPH_TAKE_DERIVED_FIELD)
+    SPH_SOLVER_FIELDS(SPH_TAKE_DERIVED_FIELD)
 #undef SPH_TAKE_DERIVED_FIELD
   }
 
@@ -97,7 +112,8 @@ struct ParticleState {
                         acc.data(),           xsph_dv.data(),       density.data(),  near_density.data(),
                         pressure.data(),      near_pressure.data(), age.data(),      fluid.data(),
                         id.data(),            pos_start.data(),     pos_mass.data(), vel_inv_rho.data(),
-                        pressure_rho2.data(), near_pressure_rho2.data()};
+                        pressure_rho2.data(), near_pressure_rho2.data(), alpha.data(),       kappa.data(),
+                        lambda.data(),        solver_error.data(),       delta_pos.data(),   omega.data()};
   }
 };
 
@@ -111,6 +127,8 @@ struct ParticleState {
 // either.
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
 constexpr std::size_t kDerivedFieldBytes = 2 * sizeof(Vec4) + 2 * sizeof(float);
-constexpr std::size_t kBytesPerParticle = 8 * kParticleFieldBytes + kDerivedFieldBytes;
+// DFSPH and PBF add their solver fields, 40 bytes, counted here for every solver (not re-measured).
+constexpr std::size_t kSolverFieldBytes = 4 * sizeof(float) + 2 * sizeof(Vec3);
+constexpr std::size_t kBytesPerParticle = 8 * kParticleFieldBytes + kDerivedFieldBytes + kSolverFieldBytes;
 
 }  // namespace sph

@@ -19,8 +19,10 @@ struct ParticleView {
   Vec3* xsph_dv;        // XSPH velocity correction from the forces pass (only when enabled)
   float* density;
   float* near_density;
-  float* pressure;
-  float* near_pressure;
+  float* pressure;       // WCSPH: the equation of state's; DFSPH: rho kappa summed over the density solve [Pa],
+                         // the next step's warm start ([BK15] section 4.3); PBF: 0
+  float* near_pressure;  // WCSPH: near pressure; DFSPH: rho kappa_v dt summed over the divergence solve [Pa s],
+                         // its warm start
   float* age;           // time since birth; < 0 while a jet particle is still in its inlet (kinematic)
   uint8_t* fluid;       // index into SimConstants::fluids
   int32_t* id;          // stable particle identity, survives reordering
@@ -30,6 +32,13 @@ struct ParticleView {
   Vec4* vel_inv_rho;          // by the pressure phase: vel_force [m/s] and 1 / rho [m^3/kg]
   float* pressure_rho2;       // by the pressure phase: P / rho^2 [m^5/(kg s^2)]
   float* near_pressure_rho2;  // by the pressure phase: P_near / rho^2, 0 without near pressure
+  // The incompressible solvers' scratch (SPH_SOLVER_FIELDS in particle_state.h), null under WCSPH:
+  float* alpha;         // DFSPH: alpha factor [m^5/kg]
+  float* kappa;         // DFSPH: this iteration's stiffness kappa or kappa_v [m^2/s^2]
+  float* lambda;        // PBF: Lagrange multiplier lambda [m^2]
+  float* solver_error;  // each particle's share of the error the solver checks (dimensionless)
+  Vec3* delta_pos;      // PBF: position correction [m]; after the solve, vorticity confinement [m/s^2]
+  Vec3* omega;          // PBF: vorticity [1/s]
 };
 
 // The grid phase's part of the derived fields, after its reorder: particle i's position with its mass

@@ -18,30 +18,26 @@
 #include "forces.h"
 #include "grid.h"
 #include "kernels.h"
+#include "mirror_walls.h"
 #include "params.h"
 
 namespace sph {
 
-// Solver parameters with the paper's defaults ([MM13] sections 3 to 5).
-struct PbfParams {
-  // Constraint force mixing epsilon of lambda, in units of 1 / h^2: epsilon = relaxation / h^2. In the bulk of
-  // a lattice with h = 1.95 d, sum |grad C|^2 is 1.5 / h^2 (tests/test_pbf_formulas.cpp), so 0.1 softens the
-  // bulk's lambda by 6% and bounds a particle with almost no neighbours to |lambda| <= 10 |C| h^2.
-  float relaxation = 0.1f;
-  // Artificial pressure s_corr = -k (W(r) / W(dq))^n, [MM13] section 4: k = 0.1, n = 4, dq = 0.1 h to 0.3 h.
-  // dq = 0.2 h, the middle of the paper's range: a pair at dq gets -k, a neighbour at the rest spacing
-  // (about h / 2) about 5% of it, so s_corr acts on pairs that come too close, not on the bulk at rest.
-  float scorr_k = 0.1f;
-  int32_t scorr_n = 4;
-  float scorr_dq = 0.2f;  // dq / h
-  // 1: lambda sees max(C_i, 0), a one-sided constraint (as Bender et al.'s PositionBasedDynamics library):
-  // particles at a free surface, whose C < 0 only because neighbours are missing, are then not pulled
-  // together. 0: the paper's C_i. The free surface's pull makes a plain Jacobi iteration compress a resting
-  // blob (tests/test_pbf_formulas.cpp).
-  int32_t clamp_expansion = 0;
-  float xsph_c = 0.01f;   // XSPH viscosity c, [MM13] section 5
-  float vorticity_epsilon = 0.0f;  // vorticity confinement strength [m/s] (a = eps N x omega), 0: off
-};
+
+// rho_i = sum_j m_j W_poly6(x_i - x_j), the particle itself included, at the positions p.pos (the predicted
+// x* while the solver iterates): the density the constraint reads ([MM13] eq. 2). With mirror walls the
+// neighbours' wall ghosts (mirror_walls.h; positions from pos_mass, which the solver keeps packed) add their
+// mass, so a particle at a wall is not read as under-dense. [kg/m^3]
+SPH_HD inline float pbf_density(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  float rho = 0.0f;
+  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3, float r2) {
+    rho += c.fluids[p.fluid[j]].mass * poly6(k, r2);
+  });
+  const NearWalls walls = c.mirror_walls ? near_walls(c, p.pos[i]) : NearWalls{};
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) { rho += p.pos_mass[j].w * poly6(k, r2); });
+  return rho;
+}
 
 // [MM13] eq. 1: C_i = rho_i / rho0 - 1. Negative under expansion, positive under compression.
 SPH_HD inline float pbf_constraint(float density, float rest_density) { return density / rest_density - 1.0f; }
@@ -52,7 +48,7 @@ SPH_HD inline float pbf_constraint(float density, float rest_density) { return d
 // neighbours in; negative under compression. Returns 0 where the denominator is not positive (an isolated
 // particle with epsilon = 0). [m^2]
 SPH_HD inline float pbf_lambda(const SimConstants& c, const GridView& grid, const ParticleView& p,
-                               const PbfParams& params, int32_t i) {
+                               const PbfConstants& params, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const float rest_density = c.fluids[p.fluid[i]].rest_density;
   Vec3 grad_i{0.0f, 0.0f, 0.0f};  // grad_i C_i [1/m]
@@ -63,6 +59,12 @@ SPH_HD inline float pbf_lambda(const SimConstants& c, const GridView& grid, cons
     grad_i += g;
     sum_grad2 += length2(g);
   });
+  // Wall ghosts are solid: they move i's constraint (grad_i C_i) but do not move themselves.
+  const Vec3 xi = p.pos[i];
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+    if (r2 > 0.0f) grad_i += (p.pos_mass[j].w / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+  });
   const float denominator = sum_grad2 + length2(grad_i) + params.relaxation / k.h2;
   if (!(denominator > 0.0f)) return 0.0f;
   const float constraint = pbf_constraint(p.density[i], rest_density);
@@ -71,7 +73,7 @@ SPH_HD inline float pbf_lambda(const SimConstants& c, const GridView& grid, cons
 
 // [MM13] eq. 13: s_corr = -k (W(r) / W(dq))^n, W = Poly6, r^2 = |x_ij|^2. Dimensionless as in the paper;
 // negative inside the support, -k at r = dq, 0 at and beyond h.
-SPH_HD inline float pbf_scorr(const KernelCoeffs& k, const PbfParams& params, float r2) {
+SPH_HD inline float pbf_scorr(const KernelCoeffs& k, const PbfConstants& params, float r2) {
   const float dq = params.scorr_dq * k.h;
   const float ratio = poly6(k, r2) / poly6(k, dq * dq);
   float power = 1.0f;
@@ -83,7 +85,7 @@ SPH_HD inline float pbf_scorr(const KernelCoeffs& k, const PbfParams& params, fl
 // lambda from pbf_lambda. The pair (i, j) moves i by m_j X and j by -m_i X for the same X: equal and opposite
 // momentum, sum_i m_i Delta p_i = 0. [m]
 SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView& grid, const ParticleView& p,
-                                           const float* lambda, const PbfParams& params, int32_t i) {
+                                           const float* lambda, const PbfConstants& params, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const float li = lambda[i];
   Vec3 dp{0.0f, 0.0f, 0.0f};
@@ -92,6 +94,14 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
     const float s = li + lambda[j] + pbf_scorr(k, params, r2) * k.h2;
     dp += (c.fluids[p.fluid[j]].mass * s * spiky_grad_fac(k, sqrtf(r2))) * xij;
   });
+  // Wall ghosts push with the particle's own lambda (and s_corr): the solid has no constraint of its own.
+  const Vec3 xi = p.pos[i];
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+    if (r2 <= 0.0f) return;
+    const float s = li + pbf_scorr(k, params, r2) * k.h2;
+    dp += (p.pos_mass[j].w * s * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+  });
   return (1.0f / c.fluids[p.fluid[i]].rest_density) * dp;
 }
 
@@ -99,7 +109,7 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
 // density of the pair: the form of forces.h's XSPH (the paper writes the unit-mass sum without m_j / rho_ij).
 // The solver sets v_i += Delta v_i after the velocity update. [m/s]
 SPH_HD inline Vec3 pbf_xsph(const SimConstants& c, const GridView& grid, const ParticleView& p, const Vec3* vel,
-                            const PbfParams& params, int32_t i) {
+                            const PbfConstants& params, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const Vec3 vi = vel[i];
   const float rho_i = p.density[i];
@@ -132,7 +142,7 @@ SPH_HD inline Vec3 pbf_vorticity(const SimConstants& c, const GridView& grid, co
 // vanishes (uniform vorticity: nothing to confine) or epsilon = 0. Acceleration, the paper's force per unit
 // mass. [m/s^2]
 SPH_HD inline Vec3 pbf_vorticity_confinement(const SimConstants& c, const GridView& grid, const ParticleView& p,
-                                             const Vec3* omega, const PbfParams& params, int32_t i) {
+                                             const Vec3* omega, const PbfConstants& params, int32_t i) {
   const Vec3 zero{0.0f, 0.0f, 0.0f};
   if (params.vorticity_epsilon == 0.0f) return zero;
   const KernelCoeffs& k = c.kernel;

@@ -124,7 +124,13 @@ struct Scene {
   ViscosityModel viscosity = ViscosityModel::Morris;
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)
-  Integrator integrator = Integrator::ModifiedVelocityVerlet;
+  Integrator integrator = Integrator::ModifiedVelocityVerlet;  // WCSPH's; DFSPH and PBF integrate their own way
+  // The pressure solver ("solver") and the settings of the incompressible ones (blocks "dfsph", "pbf";
+  // params.h says what each is). DFSPH reads sph.viscosity and sph.walls and the fluids' viscosity and
+  // surface tension; PBF has XSPH for viscosity and collides with the boundaries (no mirror walls).
+  Solver solver = Solver::Wcsph;
+  DfsphConstants dfsph = dfsph_defaults();
+  PbfConstants pbf = pbf_defaults();
   TimeStepSpec time_step;
   Vec3d gravity{0.0, -9.81, 0.0};
 
@@ -150,5 +156,6 @@ Scene parse_scene(const std::string& json_text, const std::string& source,
 
 // Names accepted for each choice, for messages and --help.
 const char* integrator_name(Integrator m);
+const char* solver_name(Solver m);  // "wcsph", "dfsph", "pbf": the scene's names
 
 }  // namespace sph

@@ -95,6 +95,18 @@ class ObjectReader {
     return out;
   }
 
+  // A whole number in [lo, hi].
+  long integer(const std::string& key, long def, long lo, long hi) {
+    if (!has(key)) return def;
+    const json& v = raw(key);
+    if (!v.is_number_integer()) fail(source_, key_path(key), "expected a whole number");
+    const long x = v.get<long>();
+    if (x < lo || x > hi)
+      fail(source_, key_path(key),
+           "value " + std::to_string(x) + " is out of range: allowed [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return x;
+  }
+
   Vec3d required_vec3(const std::string& key) {
     if (!has(key)) missing(key, "is required");
     return vec3(key, {});
@@ -362,15 +374,70 @@ const char* integrator_name(Integrator m) {
   return "?";
 }
 
+const char* solver_name(Solver m) {
+  switch (m) {
+    case Solver::Wcsph: return "wcsph";
+    case Solver::Dfsph: return "dfsph";
+    case Solver::Pbf: return "pbf";
+  }
+  return "?";
+}
+
 namespace {
+
+// "solver" and its own block ("dfsph" or "pbf"): a block for another solver than the one chosen is an error,
+// not silently ignored.
+void read_solver(ObjectReader& r, Scene& s) {
+  const std::string& source = r.source();
+  s.solver = r.choice<Solver>("solver", s.solver, {{"wcsph", Solver::Wcsph}, {"dfsph", Solver::Dfsph}, {"pbf", Solver::Pbf}});
+  for (const Solver block : {Solver::Dfsph, Solver::Pbf}) {
+    const std::string key = solver_name(block);
+    if (r.has(key) && s.solver != block)
+      fail(source, key,
+           "this block holds the settings of solver \"" + key + "\", but solver is \"" + solver_name(s.solver) +
+               "\"; set \"solver\": \"" + key + "\" or remove the block");
+  }
+  if (r.has("dfsph")) {
+    ObjectReader dr(r.raw("dfsph"), source, "dfsph");
+    dr.allow({"density_tolerance", "divergence_tolerance", "min_iterations", "max_iterations", "check_every",
+              "divergence_solver", "warm_start"});
+    DfsphConstants& d = s.dfsph;
+    d.density_tolerance = float(dr.number("density_tolerance", d.density_tolerance, 0.0, 0.1, true));
+    d.divergence_tolerance = float(dr.number("divergence_tolerance", d.divergence_tolerance, 0.0, 1.0, true));
+    d.min_iterations = int32_t(dr.integer("min_iterations", d.min_iterations, 1, 10000));
+    d.max_iterations = int32_t(dr.integer("max_iterations", d.max_iterations, 1, 10000));
+    if (d.min_iterations > d.max_iterations) fail(source, "dfsph.min_iterations", "must not exceed dfsph.max_iterations");
+    d.check_every = int32_t(dr.integer("check_every", d.check_every, 1, 100));
+    d.divergence_solver = dr.boolean("divergence_solver", d.divergence_solver != 0) ? 1 : 0;
+    d.warm_start = dr.boolean("warm_start", d.warm_start != 0) ? 1 : 0;
+    dr.finish();
+  }
+  if (r.has("pbf")) {
+    ObjectReader pr(r.raw("pbf"), source, "pbf");
+    pr.allow({"iterations", "density_tolerance", "relaxation", "scorr_k", "scorr_n", "scorr_dq", "clamp_expansion",
+              "xsph", "vorticity_epsilon"});
+    PbfConstants& b = s.pbf;
+    b.iterations = int32_t(pr.integer("iterations", b.iterations, 1, 1000));
+    b.density_tolerance = float(pr.number("density_tolerance", b.density_tolerance, 0.0, 0.1));
+    b.relaxation = float(pr.number("relaxation", b.relaxation, 0.0, 100.0));
+    b.scorr_k = float(pr.number("scorr_k", b.scorr_k, 0.0, 10.0));
+    b.scorr_n = int32_t(pr.integer("scorr_n", b.scorr_n, 1, 16));
+    b.scorr_dq = float(pr.number("scorr_dq", b.scorr_dq, 0.0, 1.0, true));
+    if (b.scorr_dq >= 1.0f) fail(source, "pbf.scorr_dq", "must be below 1 (a fraction of the support h)");
+    b.clamp_expansion = pr.boolean("clamp_expansion", b.clamp_expansion != 0) ? 1 : 0;
+    b.xsph_c = float(pr.number("xsph", b.xsph_c, 0.0, 1.0));
+    b.vorticity_epsilon = float(pr.number("vorticity_epsilon", b.vorticity_epsilon, 0.0, 1000.0));
+    pr.finish();
+  }
+}
 
 // The scene in root (the file with the --set overrides applied); SceneError names source and the key.
 Scene read_scene(const json& root, const std::string& source) {
   Scene s;
   s.source = source;
   ObjectReader r(root, source, "");
-  r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "integrator",
-           "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state", "on_overlap"});
+  r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "solver", "dfsph", "pbf",
+           "integrator", "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state", "on_overlap"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -454,6 +521,8 @@ Scene read_scene(const json& root, const std::string& source) {
     s.mirror_walls = sr.choice<bool>("walls", s.mirror_walls, {{"penalty", false}, {"mirror", true}});
     sr.finish();
   }
+
+  read_solver(r, s);
 
   s.integrator = r.choice<Integrator>("integrator", s.integrator,
                                       {{"explicit_euler", Integrator::ExplicitEuler},

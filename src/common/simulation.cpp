@@ -20,10 +20,24 @@ const char* phase_name(Phase p) {
     case Phase::Correct: return "correct";
     case Phase::Boundaries: return "boundaries";
     case Phase::Recycle: return "recycle";
+    case Phase::DensitySolve: return "density_solve";
+    case Phase::DivergenceSolve: return "divergence_solve";
+    case Phase::ConstraintSolve: return "constraint_solve";
     case Phase::Emit: return "emit";
     case Phase::Count: break;
   }
   return "?";
+}
+
+void SolverTotals::add(const SolverStats& s) {
+  ++steps;
+  density_iterations += s.density_iterations;
+  divergence_iterations += s.divergence_iterations;
+  max_density_iterations = std::max(max_density_iterations, s.density_iterations);
+  max_divergence_iterations = std::max(max_divergence_iterations, s.divergence_iterations);
+  density_capped_steps += s.density_capped ? 1 : 0;
+  divergence_capped_steps += s.divergence_capped ? 1 : 0;
+  max_density_error = std::max(max_density_error, s.density_error);
 }
 
 Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double run_time, const Frame* restart)
@@ -93,6 +107,8 @@ double Simulation::speed_bound() const {
 void Simulation::relax(const BackendFactory& factory) {
   const RelaxationSpec& spec = scene_.relaxation;
   SimConstants rc = setup_.constants;
+  rc.solver = Solver::Wcsph;  // the thesis's procedure, whatever solver the run then uses
+  rc.mirror_walls = scene_.mirror_walls;
   rc.gravity = Vec3{0.0f, 0.0f, 0.0f};
   rc.viscosity = ViscosityModel::Mueller;
   // Negative pressure is kept while relaxing: without gravity it is all that holds the fluid together. With
@@ -194,11 +210,23 @@ void Simulation::switch_backend(const BackendFactory& factory) {
   diag_ = backend_->diagnose();
 }
 
+// WCSPH: the thesis's limits (time_step.h, choose_time_step); DFSPH and PBF: the CFL step of [BK15]
+// (choose_incompressible_step).
+StepChoice Simulation::choose_step() const {
+  if (setup_.constants.solver != Solver::Wcsph)
+    return choose_incompressible_step(scene_.time_step, setup_.spacing, setup_.viscous_rate, diag_.max_speed);
+  return choose_time_step(scene_.time_step, setup_.h, setup_.max_speed_of_sound, setup_.viscous_rate,
+                          diag_.max_speed, diag_.max_accel);
+}
+
 void Simulation::advance() {
-  const StepChoice choice = choose_time_step(scene_.time_step, setup_.h, setup_.max_speed_of_sound,
-                                             setup_.viscous_rate, diag_.max_speed, diag_.max_accel);
+  const StepChoice choice = choose_step();
   const double dt = choice.dt;
   backend_->step(float(dt));
+  if (setup_.constants.solver != Solver::Wcsph) {
+    solver_stats_ = backend_->solver_stats();
+    solver_totals_.add(solver_stats_);
+  }
   for (JetEmitter& jet : setup_.jets) {
     if (emission_stopped_) break;
     std::vector<Spawn> spawns = jet.advance(time_, dt, setup_.next_id);
@@ -223,6 +251,13 @@ void Simulation::advance() {
 
   diag_ = backend_->diagnose();
   if (diag_.non_finite >= 0) blow_up("a non-finite position or velocity", diag_.non_finite, dt);
+  if (solver_stats_.density_error > kSolverDensityErrorBound) {
+    std::ostringstream os;
+    os << "the pressure solve ended with a mean compression of " << 100.0 * solver_stats_.density_error
+       << "% after " << solver_stats_.density_iterations << " iterations, above the bound of "
+       << 100.0 * kSolverDensityErrorBound << "% (the fastest particle has speed " << diag_.max_speed << " m/s)";
+    blow_up(os.str(), diag_.fastest, dt);
+  }
   const double bound = speed_bound();
   if (!(diag_.max_speed <= bound)) {
     std::ostringstream os;
@@ -270,6 +305,15 @@ void Simulation::blow_up(const std::string& what, int32_t particle, double dt) c
   }
   os << ": " << what << ".";
 
+  if (scene_.solver != Solver::Wcsph) {
+    const bool dfsph = scene_.solver == Solver::Dfsph;
+    os << " Likely cause: the " << solver_name(scene_.solver) << " pressure solve did not hold the fluid at this step "
+       << "(last solve: " << solver_stats_.density_iterations << " iterations, mean compression "
+       << 100.0 * solver_stats_.density_error << "%). "
+       << (dfsph ? "Raise dfsph.max_iterations or lower time_step.max or time_step.cfl_velocity."
+                 : "Raise pbf.iterations, set pbf.density_tolerance, or lower the time step (time_step.dt).");
+    throw BlowUp(os.str());
+  }
   const double c0 = setup_.max_speed_of_sound;
   const double dt_sound = scene_.time_step.cfl_sound * setup_.h / c0;
   const double flow = std::sqrt(2.0 * std::max(0.0, max_specific_in_ - potential_reference_));

@@ -52,6 +52,25 @@ constexpr double kEnergyMargin = 1.2;
 // do not check, so the median ms per step (sph_run, sph_bench) does not include it.
 constexpr long kEnergyCheckEvery = 10;
 
+// The incompressible solvers' density error bound: a step whose pressure solve ends with a mean compression
+// (SolverStats::density_error) above it stops the run with the blow-up message. A converging solve ends at its
+// tolerance (DFSPH 0.01%); PBF with a fixed iteration count measured up to a few percent on the dam break
+// (docs/results.md); 10% means the solve has lost hold of the fluid.
+constexpr double kSolverDensityErrorBound = 0.1;
+
+// What the iterative solvers did over a run (Simulation::solver_totals), for the runner's summary.
+struct SolverTotals {
+  long steps = 0;                        // steps counted
+  long density_iterations = 0;           // summed over the steps
+  long divergence_iterations = 0;
+  int32_t max_density_iterations = 0;
+  int32_t max_divergence_iterations = 0;
+  long density_capped_steps = 0;         // steps whose solve stopped at its cap above tolerance
+  long divergence_capped_steps = 0;
+  double max_density_error = 0.0;        // largest end-of-solve mean compression of any step
+  void add(const SolverStats& s);
+};
+
 class Simulation {
  public:
   // restart: a frame of an earlier run of this scene (frame_reader.h) to continue from, bit for bit: its
@@ -69,6 +88,9 @@ class Simulation {
   const Setup& setup() const { return setup_; }
   const Scene& scene() const { return scene_; }
   const RelaxationReport& relaxation() const { return relaxation_; }
+  // The iterative solvers' last step and their totals over the run (zero under WCSPH).
+  const SolverStats& solver_stats() const { return solver_stats_; }
+  const SolverTotals& solver_totals() const { return solver_totals_; }
   // Energy budget [J]: everything put in, measured from potential_reference(); see kEnergyMargin.
   double energy_budget() const { return energy_in_ - mass_in_ * potential_reference_; }
   // The specific potential energy -g.x [J/kg] counted as zero (pass it to measure()).
@@ -111,6 +133,8 @@ class Simulation {
   std::unique_ptr<Backend> backend_;
   Diagnostics diag_;
   RelaxationReport relaxation_;
+  SolverStats solver_stats_;
+  SolverTotals solver_totals_;
 
   // Energy bookkeeping (absolute: phi = -g.x without reference): sum m (1/2 v^2 + phi + u) and sum m of
   // everything put in, the largest 1/2 v^2 + phi + u, and the reference level (see rebase_energy()).
@@ -129,6 +153,7 @@ class Simulation {
   void rebase_energy(const ParticleState& ps);
   void check_energy(double dt);
   [[noreturn]] void blow_up(const std::string& what, int32_t particle, double dt) const;
+  StepChoice choose_step() const;
   double time_ = 0.0;
   long steps_ = 0;
   double last_dt_ = 0.0;

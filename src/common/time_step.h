@@ -42,4 +42,31 @@ inline StepChoice choose_time_step(const TimeStepSpec& t, double h, double c0, d
   return {dt, limit};
 }
 
+// The incompressible solvers' step (DFSPH, PBF): no sound-speed limit, since no equation of state carries
+// pressure waves. Adaptive: the CFL condition dt <= C_v d / v_max of [BK15] (seed 000 eq. 3, C_v =
+// cfl_velocity, 0.4 by default), d the particle spacing [m], and the explicit viscous limit as for WCSPH
+// (the viscosity is integrated explicitly); clamped to [min, max]. Fixed: time_step.dt.
+inline StepChoice choose_incompressible_step(const TimeStepSpec& t, double spacing, double viscous_rate, double v_max) {
+  if (t.mode == TimeStepMode::Fixed) return {t.dt, StepLimit::Fixed};
+  double dt = t.max;
+  StepLimit limit = StepLimit::Maximum;
+  if (v_max > 0.0 && t.cfl_velocity * spacing / v_max < dt) {
+    dt = t.cfl_velocity * spacing / v_max;
+    limit = StepLimit::Velocity;
+  }
+  if (viscous_rate > 0.0 && t.cfl_viscosity * kViscousStabilityBound / viscous_rate < dt) {
+    dt = t.cfl_viscosity * kViscousStabilityBound / viscous_rate;
+    limit = StepLimit::Viscosity;
+  }
+  if (dt < t.min) return {t.min, StepLimit::Minimum};
+  return {dt, limit};
+}
+
+// The longest step an incompressible solver is allowed [s]: one in which gravity alone moves a particle at
+// rest by at most half a spacing, g dt^2 / 2 <= d / 2. Beyond it each step starts from a compression of more
+// than half a spacing that the solve must undo, which a few iterations cannot. Infinite without gravity.
+inline double incompressible_step_bound(double spacing, double gravity) {
+  return gravity > 0.0 ? std::sqrt(spacing / gravity) : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace sph

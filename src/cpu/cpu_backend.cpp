@@ -9,7 +9,8 @@
 #include "../common/grid_build.h"
 #include "../common/neighbour_list.h"
 #include "../common/neighbour_rows.h"
-#include "../solvers/wcsph.h"
+#include "../solvers/reduction.h"
+#include "../solvers/step.h"
 
 namespace sph {
 namespace {
@@ -43,24 +44,35 @@ struct CpuBackend::Exec {
   }
   void build_grid() { b.build_grid(); }
   void recycle() { b.recycle(); }
+  // The deterministic sum of reduction.h, its groups one after another.
+  template <class F>
+  double sum(int32_t n, const F& f) {
+    const std::size_t groups = std::size_t(reduce_groups(n));
+    b.reduce_a_.resize(groups);
+    b.reduce_b_.resize(groups);
+    const double* r = reduce_sum_into(n, f, b.reduce_a_.data(), b.reduce_b_.data(), [](int32_t count, const auto& g) {
+      for (int32_t k = 0; k < count; ++k) g(k);
+    });
+    return r != nullptr ? *r : 0.0;
+  }
 };
 
 void CpuBackend::step(float dt) {
-  for (const Phase p : kStepPhases) step_phase(p, dt);
+  for (const Phase p : step_phases(c_.solver)) step_phase(p, dt);
   ++times_.steps;
 }
 
-// The solver's phase p (src/solvers/wcsph.h), timed.
+// The solver's phase p (src/solvers/step.h), timed.
 void CpuBackend::step_phase(Phase p, float dt) {
-  if (p == Phase::Emit || p == Phase::Count)
-    throw std::invalid_argument(std::string("cpu: ") + phase_name(p) + " is not a phase of a step");
+  if (!step_phases(c_.solver).contains(p))
+    throw std::invalid_argument(std::string("cpu: ") + phase_name(p) + " is not a phase of a step of this solver");
   Exec x{*this};
-  timed(times_, p, [&] { wcsph::run_phase(x, p, dt); });
+  timed(times_, p, [&] { run_solver_phase(x, p, dt, stats_); });
 }
 
 void CpuBackend::initialise_forces() {
   Exec x{*this};
-  wcsph::initialise(x);
+  initialise_solver(x);
 }
 
 // The grid of grid_build.h: keys, sort by (key, id), blocks, each block's cell table and neighbours; then
@@ -104,7 +116,7 @@ void CpuBackend::build_grid() {
   }
   std::swap(s_, sorted_);
   s_.take_derived(sorted_);
-  s_.fit_derived();
+  s_.fit_derived(c_.solver != Solver::Wcsph);
   const ParticleView p = s_.view();
   for (int32_t j = 0; j < n; ++j) pack_position(c_, p, j);  // the neighbour loops' position and mass records
 

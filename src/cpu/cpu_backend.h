@@ -1,5 +1,5 @@
 // The serial reference back end: plain loops over particles, no threads. It runs the solver's phases
-// (src/solvers/wcsph.h) through its execution interface; the physics is the shared per-particle code of
+// (src/solvers/step.h) through its execution interface; the physics is the shared per-particle code of
 // src/common/, the order of a step the solver's.
 #pragma once
 
@@ -25,6 +25,7 @@ class CpuBackend final : public Backend {
   std::size_t size() const override { return s_.size(); }
   Diagnostics diagnose() override;
   const PhaseTimes& phase_times() const override { return times_; }
+  SolverStats solver_stats() const override { return stats_; }
   void set_constants(const SimConstants& constants) override { c_ = constants; }
 
   // The grid phase alone (tests of the grid and of per-particle formulas); step_phase runs any phase.
@@ -68,6 +69,8 @@ class CpuBackend final : public Backend {
   int32_t list_capacity_ = 0;  // neighbour_list_capacity(c_) at the last grid build
   NeighbourListChoice list_choice_;
   PhaseTimes times_;
+  SolverStats stats_;
+  std::vector<double> reduce_a_, reduce_b_;  // the levels of a reduction (src/solvers/reduction.h)
 };
 
 }  // namespace sph

@@ -110,20 +110,25 @@ struct DeviceArrays {
 #define SPH_DECLARE_DEVICE_FIELD(type, name) DeviceVector<type> name;
   SPH_PARTICLE_FIELDS(SPH_DECLARE_DEVICE_FIELD)
   SPH_DERIVED_FIELDS(SPH_DECLARE_DEVICE_FIELD)
+  SPH_SOLVER_FIELDS(SPH_DECLARE_DEVICE_FIELD)
 #undef SPH_DECLARE_DEVICE_FIELD
 
   std::size_t size() const { return pos.size(); }
 
   // Bytes of device memory per particle: the fields, in this and in the reordering copy, and the derived
   // fields once.
-  static constexpr std::size_t kBytesPerParticle = 2 * kParticleFieldBytes + kDerivedFieldBytes;
+  static constexpr std::size_t kBytesPerParticle = 2 * kParticleFieldBytes + kDerivedFieldBytes + kSolverFieldBytes;
 
   // Sizes the derived fields (SPH_DERIVED_FIELDS) to the particle count; their values are left to the
-  // grid phase's packing and the pressure phase, which write them before every use.
-  void fit_derived() {
+  // grid phase's packing and the pressure phase, which write them before every use; the solver fields
+  // (SPH_SOLVER_FIELDS) too when solver_fields is set, else they are freed.
+  void fit_derived(bool solver_fields) {
 #define SPH_FIT_DERIVED_FIELD(type, name) name.resize(size());
     SPH_DERIVED_FIELDS(SPH_FIT_DERIVED_FIELD)
 #undef SPH_FIT_DERIVED_FIELD
+#define SPH_FIT_SOLVER_FIELD(type, name) name.resize(solver_fields ? size() : 0);
+    SPH_SOLVER_FIELDS(SPH_FIT_SOLVER_FIELD)
+#undef SPH_FIT_SOLVER_FIELD
   }
 
   // After a swap with the reordering buffer: takes back the derived fields, so that only one of the two
@@ -131,6 +136,7 @@ struct DeviceArrays {
   void take_derived(DeviceArrays& other) {
 #define SPH_TAKE_DERIVED_FIELD(type, name) name.swap(other.name);
     SPH_DERIVED_FIELDS(SPH_TAKE_DERIVED_FIELD)
+    SPH_SOLVER_FIELDS(SPH_TAKE_DERIVED_FIELD)
 #undef SPH_TAKE_DERIVED_FIELD
   }
 
@@ -188,7 +194,13 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(pos_mass.data()),
                         thrust::raw_pointer_cast(vel_inv_rho.data()),
                         thrust::raw_pointer_cast(pressure_rho2.data()),
-                        thrust::raw_pointer_cast(near_pressure_rho2.data())};
+                        thrust::raw_pointer_cast(near_pressure_rho2.data()),
+                        thrust::raw_pointer_cast(alpha.data()),
+                        thrust::raw_pointer_cast(kappa.data()),
+                        thrust::raw_pointer_cast(lambda.data()),
+                        thrust::raw_pointer_cast(solver_error.data()),
+                        thrust::raw_pointer_cast(delta_pos.data()),
+                        thrust::raw_pointer_cast(omega.data())};
   }
 };
 

@@ -1,4 +1,4 @@
-// The device back end: the solver's phases (src/solvers/wcsph.h) as data-parallel loops over particle or
+// The device back end: the solver's phases (src/solvers/step.h) as data-parallel loops over particle or
 // block indices (device_launch.h), the physics from src/common/, the grid sorted by cell key (device_grid.h). One source, two builds (see
 // device_backend.h): SPH_DEVICE_NS and the factory name are set by the including build.
 //
@@ -25,7 +25,8 @@
 #include <thrust/transform_reduce.h>
 
 #include "../common/grid.h"
-#include "../solvers/wcsph.h"
+#include "../solvers/reduction.h"
+#include "../solvers/step.h"
 #include "device_arrays.h"
 #include "device_constants.h"
 #include "device_faults.h"
@@ -145,6 +146,7 @@ class DeviceBackend final : public Backend {
     await_step();
     return trim_to_ >= 0 ? std::size_t(trim_to_) : d_.size();
   }
+  SolverStats solver_stats() const override { return stats_; }
   // Under nvcc the phase times of enqueued work are read here, or at the step's end (device_timers.h).
   const PhaseTimes& phase_times() const override {
     clock_.collect(times_);
@@ -191,21 +193,21 @@ class DeviceBackend final : public Backend {
     diag_current_ = false;
     run_phase(name_, "initial forces", [&] {
       Exec x{*this};
-      wcsph::initialise(x);
+      initialise_solver(x);
     });
   }
 
   void step(float dt) override {
     settle();
-    for (const Phase p : kStepPhases) run_step_phase(p, dt);
+    for (const Phase p : step_phases(c_.solver)) run_step_phase(p, dt);
     ++times_.steps;
     end_of_work();
   }
 
   // One phase alone (tests), with the step's end: its summary (cuda) or fresh diagnostics (host).
   void step_phase(Phase p, float dt) override {
-    if (p == Phase::Emit || p == Phase::Count)
-      throw std::invalid_argument(name_ + ": " + phase_name(p) + " is not a phase of a step");
+    if (!step_phases(c_.solver).contains(p))
+      throw std::invalid_argument(name_ + ": " + phase_name(p) + " is not a phase of a step of this solver");
     settle();
     run_step_phase(p, dt);
     end_of_work();
@@ -344,12 +346,32 @@ class DeviceBackend final : public Backend {
     }
     void build_grid() { b.build_grid(); }
     void recycle() { b.recycle(); }
+    // The deterministic sum of reduction.h, a loop per level; its result is read to the host (on cuda a
+    // copy that waits for the work enqueued before it: the iterative solvers' one read per check).
+    template <class F>
+    double sum(int32_t n, const F& f) {
+      const std::size_t groups = std::size_t(reduce_groups(n));
+      if (b.reduce_a_.size() < groups) b.reduce_a_.resize(groups);
+      if (b.reduce_b_.size() < groups) b.reduce_b_.resize(groups);
+      const double* r = reduce_sum_into(n, f, thrust::raw_pointer_cast(b.reduce_a_.data()),
+                                        thrust::raw_pointer_cast(b.reduce_b_.data()),
+                                        [](int32_t count, const auto& g) { launch(count, g); });
+      if (r == nullptr) return 0.0;
+      double value = 0.0;
+#if defined(__CUDACC__)
+      CUDA_CHECK(cudaMemcpy(&value, r, sizeof(double), cudaMemcpyDeviceToHost));
+#else
+      value = *r;
+#endif
+      ++device_counters().reads;
+      return value;
+    }
   };
 
-  // The solver's phase p (src/solvers/wcsph.h), timed.
+  // The solver's phase p (src/solvers/step.h), timed.
   void run_step_phase(Phase p, float dt) {
     Exec x{*this};
-    timed(p, [&] { wcsph::run_phase(x, p, dt); });
+    timed(p, [&] { run_solver_phase(x, p, dt, stats_); });
   }
 
   // After enqueued work that moved the particles: the summary (diagnostics, the kept count after recycling
@@ -364,7 +386,7 @@ class DeviceBackend final : public Backend {
   void build_grid() {
     grid_.build(c_, d_, sorted_, with_temporaries(temporary_), &summary()->blocks, result_.blocks);
     d_.take_derived(sorted_);  // the reorder and the compaction carry only the fields the loops derive theirs from
-    d_.fit_derived();
+    d_.fit_derived(c_.solver != Solver::Wcsph);
     launch(n(), PackPositionFn{constants(), d_.view()});
   }
 
@@ -409,6 +431,8 @@ class DeviceBackend final : public Backend {
   DeviceGrid grid_;
   DeviceVector<int32_t> keep_;
   DeviceVector<uint8_t> keep_flag_;
+  DeviceVector<double> reduce_a_, reduce_b_;  // the levels of a reduction (src/solvers/reduction.h)
+  SolverStats stats_;
   ParticleState host_;
 
   // The step's end: the summary on the device and its copy on the host. Mutable: size() and phase_times()

@@ -92,7 +92,7 @@ struct CopyVelocityFn {
 
 // ---- the step ---------------------------------------------------------------------------------------------
 
-// Runs phase p of a step (one of kStepPhases, backend.h, which is their order) on the back end's Exec.
+// Runs phase p of a WCSPH step (one of kStepPhases, backend.h, which is their order) on the back end's Exec.
 template <class Exec>
 void run_phase(Exec& x, Phase p, float dt) {
   using C = typename Exec::Constants;
@@ -115,8 +115,7 @@ void run_phase(Exec& x, Phase p, float dt) {
       if (c.num_shapes > 0) x.for_each(BoundariesFn<C>{x.constants(), x.particles(), dt});
       return;
     case Phase::Recycle: x.recycle(); return;  // particles past their lifetime or absorbed leave
-    case Phase::Emit:
-    case Phase::Count: return;  // not phases of a step: the back ends refuse them before
+    default: return;  // not a phase of a WCSPH step: the back ends refuse it before
   }
 }
 

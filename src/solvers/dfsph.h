@@ -1,0 +1,225 @@
+// Divergence-free SPH [BK15] (Bender & Koschier 2015; seed 000 reproduces it): its phases and their order,
+// written once for every back end over the execution interface (src/solvers/execution.h). The per-particle
+// formulas are src/common/dfsph.h's; the non-pressure forces are WCSPH's forces without their pressure term
+// (forces.h, NonPressureForces), so viscosity, surface tension, gravity and the user force are shared.
+//
+// A step ([BK15] algorithm 1; the order is kDfsphPhases in backend.h). The paper's loop is entered at its
+// neighbourhood update, so that a step needs nothing computed by the one before (an upload, a restart or a
+// jet's new particles start a step like any other):
+//   build_grid, density: the grid, rho (seed eq. 7) and alpha (eq. 9) at the current positions
+//   divergence_solve: correct v until D rho / Dt = 0 on average (algorithm 2)
+//   forces:           a = non-pressure acceleration
+//   predict:          v* = v + dt a
+//   density_solve:    correct v* until the predicted density rho* = rho + dt D rho / Dt is at rest density
+//                     on average (algorithm 3)
+//   correct:          x += dt v*
+//   boundaries:       the scene's shapes (penalty walls, obstacles)
+//   recycle
+// dt is the driver's (Simulation::advance: the CFL step, seed eq. 3, from the speeds this step leaves).
+//
+// Both solves: only compression is corrected (ErrorFn), so a free surface is not pulled together; they
+// warm-start
+// from half the last step's pressures ([BK15] section 4.3; WarmStartFn), kept per particle in the fields pressure (rho kappa,
+// [Pa]) and near_pressure (rho kappa_v dt, [Pa s]), which survive the grid's reorder and do not depend on dt.
+// Convergence: one deterministic reduction (reduction.h) per check, every check_every iterations after the
+// minimum, the same on every back end; a solve that reaches max_iterations above its tolerance is flagged
+// (SolverStats::*_capped) for the run's metrics and summary.
+#pragma once
+
+#include <cstdint>
+
+#include "../common/backend.h"
+#include "../common/dfsph.h"
+#include "../common/forces.h"
+#include "../common/particle_view.h"
+#include "../common/sph_hd.h"
+#include "wcsph.h"
+
+namespace sph {
+namespace dfsph {
+
+// The forces loop's per-particle inputs without a pressure (forces.h reads vel_inv_rho, and the pressure
+// terms are compiled out by NonPressureForces).
+struct ForceInputsFn {
+  ParticleView p;
+  SPH_HD void operator()(int32_t i) const {
+    p.vel_force[i] = p.vel[i];
+    p.vel_inv_rho[i] = with_w(p.vel[i], 1.0f / p.density[i]);
+    p.pressure_rho2[i] = 0.0f;
+    p.near_pressure_rho2[i] = 0.0f;
+  }
+};
+
+// v* = v + dt a_nonpressure ([BK15] algorithm 1, line 5); inlet particles (age < 0) keep their velocity.
+struct PredictVelocityFn {
+  ParticleView p;
+  float dt;
+  SPH_HD void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) p.vel[i] += dt * p.acc[i];
+  }
+};
+
+// x += dt v (algorithm 1, line 8), after XSPH's correction where enabled (as WCSPH's correct: integrate.h);
+// pos_start records where the step started, for the shapes' segment test (boundaries.h).
+template <class C>
+struct AdvectFn {
+  C c;
+  ParticleView p;
+  float dt;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    p.pos_start[i] = p.pos[i];
+    if (p.age[i] >= 0.0f && (*c).xsph_enabled) p.vel[i] += p.xsph_dv[i];
+    p.pos[i] += dt * p.vel[i];
+    p.age[i] += dt;
+  }
+};
+
+// rho_i (seed eq. 7) and then alpha_i (eq. 9), which reads rho_i only of the particle's own.
+template <class C>
+struct DensityAlphaFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    p.density[i] = dfsph_density(*c, g, p, i);
+    p.alpha[i] = dfsph_alpha(*c, g, p, i);
+  }
+};
+
+// The warm start ([BK15] section 4.3): half the pressure the last step's solve ended with, kappa = P / (2 rho)
+// (density solver, scale = 1) or kappa_v = P_v / (2 rho dt) (divergence solver, scale = 1 / dt). The solve
+// then adds what is still missing, so a resting column ends each step with half its pressure from the warm
+// start and half from the iterations. The full pressure (SPlisHSPlasH's comment keeps the factor 0.5 too)
+// could only grow from step to step, since the corrections never pull; with the half, too much pressure
+// halves each step instead of pushing the fluid apart (measured: the full warm start lifted a resting column
+// within 100 steps). With warm_start off, kappa = 0. Inlet particles get none.
+struct WarmStartFn {
+  ParticleView p;
+  float* kept;  // p.pressure or p.near_pressure
+  float scale;
+  int32_t warm;
+  SPH_HD void operator()(int32_t i) const {
+    kept[i] = warm && p.age[i] >= 0.0f ? 0.5f * kept[i] : 0.0f;
+    p.kappa[i] = kept[i] * scale / p.density[i];
+  }
+};
+
+// The error of one particle and the stiffness of its next correction. Density solver (kDensity): the
+// predicted compression max(rho* - rho0, 0) (seed eq. 10) gives kappa = (rho* - rho0) alpha / dt^2 (eq. 14);
+// divergence solver: max(D rho / Dt, 0) gives kappa_v = (D rho / Dt) alpha / dt (eq. 19). Only compression is
+// corrected, so every correction pushes apart and a particle's pressure within a step only grows: a one-sided
+// Jacobi iteration, which converges where the two-sided one (corrections of either sign, the total pressure
+// kept >= 0) diverged within 30 steps of a resting column, even with penalty walls (measured).
+// error: the compression over rho0, max(rho* - rho0, 0) / rho0 or dt max(D rho / Dt, 0) / rho0.
+template <class C, bool kDensity>
+struct ErrorFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  float dt;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    const float rest = (*c).fluids[p.fluid[i]].rest_density;
+    const float rate = p.age[i] < 0.0f ? 0.0f : dfsph_density_rate(*c, g, p, p.vel, i);
+    const float excess = kDensity ? dfsph_predicted_density(p.density[i], rate, dt) - rest : rate;
+    const float compression = excess > 0.0f ? excess : 0.0f;
+    p.kappa[i] = kDensity ? dfsph_density_stiffness(rest + compression, rest, p.alpha[i], dt)
+                          : dfsph_divergence_stiffness(compression, p.alpha[i], dt);
+    p.solver_error[i] = compression * (kDensity ? 1.0f : dt) / rest;
+  }
+};
+
+// v += dt a(kappa) (seed eqs. 15-17) and the pressure kept for the next warm start: kept += rho kappa * keep
+// (keep = 1: P; keep = dt: P_v dt). Inlet particles are moved by their inlet, not by the solve.
+template <class C>
+struct ApplyFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  float dt;
+  float* kept;
+  float keep;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] < 0.0f) return;
+    p.vel[i] += dt * dfsph_pressure_acceleration(*c, g, p, p.kappa, i);
+    kept[i] += keep * p.density[i] * p.kappa[i];
+  }
+};
+
+struct SolverErrorOf {
+  const float* error;
+  SPH_HD float operator()(int32_t i) const { return error[i]; }
+};
+
+// One of the two solves ([BK15] algorithms 2 and 3): warm start, then corrections until the mean error is
+// within tolerance (checked every check_every iterations once min_iterations are done) or max_iterations.
+// Returns the iterations; error: the mean error the solve ended at; capped: it stopped at the cap above tolerance.
+template <class Exec, bool kDensity>
+int32_t solve(Exec& x, float dt, double& error, bool& capped) {
+  using C = typename Exec::Constants;
+  const SimConstants& c = x.host_constants();
+  const DfsphConstants& s = c.dfsph;
+  const ParticleView p = x.particles();
+  float* kept = kDensity ? p.pressure : p.near_pressure;
+  const float keep = kDensity ? 1.0f : dt;
+  const float tolerance = kDensity ? s.density_tolerance : s.divergence_tolerance;
+  const int32_t min_iterations = kDensity ? s.min_iterations : 1;
+  const int32_t n = p.n;
+  x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start});
+  if (s.warm_start) x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, 0.0f});  // kept as it is
+  x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt});
+  error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
+  int32_t it = 0;
+  while (it < s.max_iterations && (it < min_iterations || error > double(tolerance))) {
+    x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, keep});
+    x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt});
+    ++it;
+    if (it >= min_iterations && (it % s.check_every == 0 || it == s.max_iterations))
+      error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
+  }
+  capped = it == s.max_iterations && error > double(tolerance);
+  return it;
+}
+
+// Runs phase ph of a DFSPH step (one of kDfsphPhases) on the back end's Exec; the solves record what they
+// did in stats.
+template <class Exec>
+void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
+  using C = typename Exec::Constants;
+  const SimConstants& c = x.host_constants();
+  switch (ph) {
+    case Phase::Forces:
+      x.for_each(ForceInputsFn{x.particles()});
+      x.for_each(wcsph::ForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
+      return;
+    case Phase::Predict: x.for_each(PredictVelocityFn{x.particles(), dt}); return;
+    case Phase::DensitySolve:
+      stats.density_iterations = solve<Exec, true>(x, dt, stats.density_error, stats.density_capped);
+      return;
+    case Phase::Correct: x.for_each(AdvectFn<C>{x.constants(), x.particles(), dt}); return;
+    case Phase::Boundaries:
+      if (c.num_shapes > 0) x.for_each(wcsph::BoundariesFn<C>{x.constants(), x.particles(), dt});
+      return;
+    case Phase::BuildGrid: x.build_grid(); return;
+    case Phase::Density: x.for_each(DensityAlphaFn<C>{x.constants(), x.grid(), x.particles()}); return;
+    case Phase::DivergenceSolve:
+      stats.divergence_iterations = 0;
+      stats.divergence_error = 0.0;
+      stats.divergence_capped = false;
+      if (c.dfsph.divergence_solver)
+        stats.divergence_iterations = solve<Exec, false>(x, dt, stats.divergence_error, stats.divergence_capped);
+      return;
+    case Phase::Recycle: x.recycle(); return;
+    default: return;  // not a phase of a DFSPH step: the back ends refuse it before
+  }
+}
+
+// Densities and alpha factors of an uploaded state, for its first metrics (a step computes its own).
+template <class Exec>
+void initialise(Exec& x) {
+  SolverStats unused;
+  run_phase(x, Phase::BuildGrid, 0.0f, unused);
+  run_phase(x, Phase::Density, 0.0f, unused);
+}
+
+}  // namespace dfsph
+}  // namespace sph

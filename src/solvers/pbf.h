@@ -1,0 +1,222 @@
+// Position Based Fluids [MM13] (Macklin & Mueller 2013; seed 002 describes the position-based pressure
+// solver): its phases and their order, written once for every back end over the execution interface
+// (src/solvers/execution.h). The per-particle formulas are src/common/pbf.h's.
+//
+// A step ([MM13] algorithm 1; the order is kPbfPhases in backend.h):
+//   predict:          v += dt a_ext (gravity, the user force); x* = x + dt v, then the scene's shapes
+//   build_grid:       the grid on x*, kept through the iterations (the paper finds neighbours once a step)
+//   constraint_solve: iterations of density rho(x*), lambda (eqs. 8-11), Delta p (eq. 14, with s_corr),
+//                     x* += Delta p and the shapes again; a last density for the error and what follows
+//   correct:          v = (x* - x) / dt
+//   forces:           vorticity confinement (eqs. 15, 16) and XSPH (eq. 17) on v
+//   recycle
+// The old position x is pos_start (the shapes test the segment x -> x*). The neighbour loops search the grid's
+// cells with the current positions (no neighbour lists: neighbour_list.h), as a GPU does.
+// Each iteration is Jacobi: every lambda from the same positions, then every Delta p from the same lambdas.
+// With pbf.density_tolerance > 0 the iterations stop early once the mean compression max(C, 0) is within it
+// (one reduction a check, deterministic: reduction.h); a step that uses every iteration above it is flagged.
+#pragma once
+
+#include <cstdint>
+
+#include "../common/backend.h"
+#include "../common/boundaries.h"
+#include "../common/forces.h"
+#include "../common/pbf.h"
+#include "../common/sph_hd.h"
+
+namespace sph {
+namespace pbf {
+
+// v += dt a_ext, x* = x + dt v ([MM13] algorithm 1, lines 2-3), then the shapes (boundaries.h) on the
+// segment x -> x*; the acceleration is kept in acc for the driver's diagnostics. Inlet particles (age < 0)
+// move kinematically.
+template <class C>
+struct PredictFn {
+  C c;
+  ParticleView p;
+  float dt;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    const SimConstants& k = *c;
+    p.pos_start[i] = p.pos[i];
+    if (p.age[i] < 0.0f) {
+      p.acc[i] = Vec3{0.0f, 0.0f, 0.0f};
+      p.pos[i] += dt * p.vel[i];
+      return;
+    }
+    Vec3 a = k.gravity;
+    if (k.user_force.strength != 0.0f) a += user_force_acceleration(k, p.pos[i]);
+    p.acc[i] = a;
+    p.vel[i] += dt * a;
+    p.pos[i] += dt * p.vel[i];
+    boundaries_of(k, p, i, dt);
+  }
+};
+
+// Density at x* and the particle's compression max(C, 0) for the convergence test (inlet particles: 0).
+template <class C>
+struct DensityFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    const float rho = pbf_density(*c, g, p, i);
+    const float constraint = pbf_constraint(rho, (*c).fluids[p.fluid[i]].rest_density);
+    p.density[i] = rho;
+    p.solver_error[i] = p.age[i] < 0.0f || constraint < 0.0f ? 0.0f : constraint;
+  }
+};
+
+template <class C>
+struct LambdaFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    p.lambda[i] = p.age[i] < 0.0f ? 0.0f : pbf_lambda(*c, g, p, (*c).pbf, i);
+  }
+};
+
+template <class C>
+struct CorrectionFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    p.delta_pos[i] = p.age[i] < 0.0f ? Vec3{0.0f, 0.0f, 0.0f} : pbf_position_correction(*c, g, p, p.lambda, (*c).pbf, i);
+  }
+};
+
+// x* += Delta p ([MM13] algorithm 1, line 17), then collision with the shapes ("perform collision detection
+// and response", line 15): the segment from x, so a correction cannot carry a particle through a wall.
+template <class C>
+struct ApplyCorrectionFn {
+  C c;
+  ParticleView p;
+  float dt;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) {
+      p.pos[i] += p.delta_pos[i];
+      boundaries_of(*c, p, i, dt);
+    }
+    pack_position(*c, p, i);  // the wall ghosts' positions (mirror_walls.h reads pos_mass)
+  }
+};
+
+// v = (x* - x) / dt (line 21); the particle's age advances.
+struct VelocityFn {
+  ParticleView p;
+  float dt;
+  SPH_HD void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) p.vel[i] = (1.0f / dt) * (p.pos[i] - p.pos_start[i]);
+    p.age[i] += dt;
+  }
+};
+
+template <class C>
+struct VorticityFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const { p.omega[i] = pbf_vorticity(*c, g, p, p.vel, i); }
+};
+
+// XSPH's velocity correction into xsph_dv and vorticity confinement's acceleration into delta_pos, from the
+// velocities v (and vorticities) of every particle; ApplyVelocityFn adds them once all are known.
+template <class C>
+struct VelocityCorrectionFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    const PbfConstants& s = (*c).pbf;
+    const Vec3 zero{0.0f, 0.0f, 0.0f};
+    p.xsph_dv[i] = s.xsph_c > 0.0f ? pbf_xsph(*c, g, p, p.vel, s, i) : zero;
+    p.delta_pos[i] = s.vorticity_epsilon > 0.0f ? pbf_vorticity_confinement(*c, g, p, p.omega, s, i) : zero;
+  }
+};
+
+struct ApplyVelocityFn {
+  ParticleView p;
+  float dt;
+  SPH_HD void operator()(int32_t i) const {
+    if (p.age[i] < 0.0f) return;
+    p.vel[i] += p.xsph_dv[i] + dt * p.delta_pos[i];
+    p.acc[i] += p.delta_pos[i];
+  }
+};
+
+struct SolverErrorOf {
+  const float* error;
+  SPH_HD float operator()(int32_t i) const { return error[i]; }
+};
+
+// The grid without neighbour lists: every loop searches with the current positions (see above).
+template <class Exec>
+GridView searched_grid(Exec& x) {
+  GridView g = x.grid();
+  g.neighbour_list = nullptr;
+  return g;
+}
+
+// The constraint iterations: density and error, then (unless done) lambda, Delta p and its application.
+// Returns the iterations made; error: the mean compression at the end; capped: a tolerance was set and not met.
+template <class Exec>
+int32_t solve(Exec& x, float dt, double& error, bool& capped) {
+  using C = typename Exec::Constants;
+  const PbfConstants& s = x.host_constants().pbf;
+  const ParticleView p = x.particles();
+  const GridView g = searched_grid(x);
+  const int32_t n = p.n;
+  int32_t it = 0;
+  for (;;) {
+    x.for_each(DensityFn<C>{x.constants(), g, p});
+    const bool last = it == s.iterations;
+    if (last || s.density_tolerance > 0.0f) {
+      error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
+      if (last || error <= double(s.density_tolerance)) break;
+    }
+    x.for_each(LambdaFn<C>{x.constants(), g, p});
+    x.for_each(CorrectionFn<C>{x.constants(), g, p});
+    x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt});
+    ++it;
+  }
+  capped = s.density_tolerance > 0.0f && error > double(s.density_tolerance);
+  return it;
+}
+
+// Runs phase ph of a PBF step (one of kPbfPhases) on the back end's Exec; the solve records what it did in
+// stats.
+template <class Exec>
+void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
+  using C = typename Exec::Constants;
+  const PbfConstants& s = x.host_constants().pbf;
+  switch (ph) {
+    case Phase::Predict: x.for_each(PredictFn<C>{x.constants(), x.particles(), dt}); return;
+    case Phase::BuildGrid: x.build_grid(); return;
+    case Phase::ConstraintSolve:
+      stats.density_iterations = solve(x, dt, stats.density_error, stats.density_capped);
+      return;
+    case Phase::Correct: x.for_each(VelocityFn{x.particles(), dt}); return;
+    case Phase::Forces:
+      if (s.vorticity_epsilon > 0.0f) x.for_each(VorticityFn<C>{x.constants(), searched_grid(x), x.particles()});
+      if (s.vorticity_epsilon > 0.0f || s.xsph_c > 0.0f) {
+        x.for_each(VelocityCorrectionFn<C>{x.constants(), searched_grid(x), x.particles()});
+        x.for_each(ApplyVelocityFn{x.particles(), dt});
+      }
+      return;
+    case Phase::Recycle: x.recycle(); return;
+    default: return;  // not a phase of a PBF step: the back ends refuse it before
+  }
+}
+
+// The grid and densities of an uploaded state (for its first metrics; a step computes its own).
+template <class Exec>
+void initialise(Exec& x) {
+  using C = typename Exec::Constants;
+  x.build_grid();
+  x.for_each(DensityFn<C>{x.constants(), searched_grid(x), x.particles()});
+}
+
+}  // namespace pbf
+}  // namespace sph
