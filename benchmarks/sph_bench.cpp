@@ -1,8 +1,13 @@
 // sph_bench: the CPU-vs-GPU benchmark. Fixed workloads on every usable back end: the thesis's performance
-// cube (16^3 and 32^3, thesis 5.2 parameters) and the dam break at several sizes. Warm-up steps, repeated
-// runs. ms/step is the median of the measured steps (robust to other work on the machine); the time by phase
-// is a mean per step (the back ends accumulate it), and ms_mean is the mean of the same steps, so the two
-// can be compared. Prints a table and writes CSV and JSON that name the hardware.
+// cube (16^3 and 32^3, thesis 5.2 parameters), the dam break at several sizes, and the 16k dam break under
+// each pressure solver (WCSPH, DFSPH, PBF at 4 ms). Warm-up steps, repeated runs. ms/step is the median of
+// the measured steps (robust to other work on the machine); the time by phase is a mean per step (the back
+// ends accumulate it), and ms_mean is the mean of the same steps, so the two can be compared. The solvers
+// take steps of very different length, so a step's cost does not compare them: each workload also reports
+// the wall seconds per simulated second of its measured steps (their summed wall time over the simulated
+// time they covered), the mean dt and the solver iterations per step; the solver workloads all measure the
+// same stretch of the flow, from t = 0 to --solver-time. Prints tables and writes CSV and JSON that name
+// the hardware.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -39,6 +44,10 @@ struct Workload {
   // The thesis's published ms/step for this workload (thesis 5.2), 0 when it has none.
   double thesis_cpu_ms = 0.0, thesis_gpu_ms = 0.0;
   bool cuda_only = false;
+  // Simulated seconds to measure from t = 0, after a warm-up on a run that is thrown away (the solver
+  // workloads: solvers whose steps differ are measured over the same stretch of the flow); 0: --steps steps
+  // after --warmup steps of the measured run.
+  double simulated_s = 0.0;
 };
 
 struct Result {
@@ -49,6 +58,20 @@ struct Result {
   PhaseTimes phases;         // mean ms per step by phase
   double speedup_vs_cpu = 0.0;
   double thesis_cpu_ms = 0.0, thesis_gpu_ms = 0.0;
+  std::string solver;        // the scene's pressure solver (solver_name)
+  long steps = 0;            // measured steps, all repeats
+  double simulated_s = 0.0;  // the simulated time they covered [s]
+  double wall_s = 0.0;       // their summed wall time [s]
+  // Iterations of the measured steps (SolverTotals): DFSPH's density solve or PBF's constraint iterations,
+  // DFSPH's divergence solve, and the solves that stopped at their cap above tolerance.
+  long solver_iterations = 0, divergence_iterations = 0, capped_solves = 0;
+  // solver_wcsph's wall seconds per simulated second on the same back end over this workload's (solver
+  // workloads only, else 0): how many times cheaper a simulated second is than under WCSPH.
+  double speedup_vs_wcsph = 0.0;
+
+  double mean_dt() const { return simulated_s / double(steps); }
+  double wall_per_simulated() const { return wall_s / simulated_s; }
+  double per_step(long n) const { return double(n) / double(steps); }
 };
 
 std::string cpu_model() {
@@ -82,20 +105,39 @@ Result run_one(const std::string& scene_dir, const Workload& w, const std::strin
   std::vector<double> samples;
   for (int rep = 0; rep < repeats; ++rep) {
     // A fresh simulation each repeat: every repeat measures the same steps of the same workload.
-    Scene scene = load_scene(scene_dir + "/" + w.scene, w.sets);
-    Simulation sim(scene, backend_factory(backend), scene.run_time);  // set-up checks as sph_run's
-    for (int i = 0; i < warmup; ++i) sim.advance();
+    const Scene scene = load_scene(scene_dir + "/" + w.scene, w.sets);
+    const double run_time = std::max(scene.run_time, w.simulated_s);
+    r.solver = solver_name(scene.solver);
+    if (w.simulated_s > 0.0 && warmup > 0) {  // warm-up on a run thrown away: the measured one starts at t = 0
+      Simulation warm(scene, backend_factory(backend), run_time);
+      for (int i = 0; i < warmup; ++i) warm.advance();
+    }
+    Simulation sim(scene, backend_factory(backend), run_time);  // set-up checks as sph_run's
+    if (w.simulated_s == 0.0)
+      for (int i = 0; i < warmup; ++i) sim.advance();
     const PhaseTimes before = sim.backend().phase_times();
-    for (int i = 0; i < steps; ++i) {
+    const SolverTotals totals_before = sim.solver_totals();
+    const double t_begin = sim.time();
+    // The relative margin keeps round-off in the summed time from adding a step (PBF: 0.004 s steps).
+    auto measuring = [&](long done) { return w.simulated_s > 0.0 ? sim.time() < w.simulated_s * (1.0 - 1e-9) : done < steps; };
+    for (long done = 0; measuring(done); ++done) {
       const auto t0 = std::chrono::steady_clock::now();
       sim.advance();
       samples.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      ++r.steps;
     }
     const PhaseTimes& after = sim.backend().phase_times();
-    for (std::size_t p = 0; p < after.seconds.size(); ++p)
-      r.phases.seconds[p] += 1e3 * (after.seconds[p] - before.seconds[p]) / double(steps * repeats);
+    for (std::size_t p = 0; p < after.seconds.size(); ++p) r.phases.seconds[p] += 1e3 * (after.seconds[p] - before.seconds[p]);
+    const SolverTotals& totals = sim.solver_totals();
+    r.solver_iterations += totals.density_iterations - totals_before.density_iterations;
+    r.divergence_iterations += totals.divergence_iterations - totals_before.divergence_iterations;
+    r.capped_solves += totals.density_capped_steps - totals_before.density_capped_steps + totals.divergence_capped_steps -
+                       totals_before.divergence_capped_steps;
+    r.simulated_s += sim.time() - t_begin;
     r.particles = long(sim.backend().size());
   }
+  for (double& s : r.phases.seconds) s /= double(r.steps);
+  r.wall_s = 1e-3 * std::accumulate(samples.begin(), samples.end(), 0.0);
   r.ms_per_step = median(samples);
   r.ms_mean = std::accumulate(samples.begin(), samples.end(), 0.0) / double(samples.size());
   r.ms_min = *std::min_element(samples.begin(), samples.end());
@@ -137,11 +179,16 @@ int main(int argc, char** argv) {
   int warmup = 3, steps = 10, repeats = 3;
   std::vector<int> dam_sizes{20, 37, 80};  // particles across a: about 16k, 100k and 1M particles
   int dam_cuda_only = 127;                 // about 4M particles, on cuda only
+  int solver_size = 20;                    // the solver workloads' dam break: about 16k particles
+  double solver_time = 0.05;               // simulated seconds each solver workload measures
   bool quick = false;
   CLI::App app{"sph_bench: ms per step and particle-steps per second of fixed workloads on every back end.\n"
                "Workloads: the thesis's performance cube (16^3 and 32^3 particles, thesis 5.2 parameters), a cube of\n"
-               "8,000 particles in a 0.2 m and a 50 m tank (the grid's cost against the domain's size) and the\n"
-               "dam break at several resolutions. Writes OUT/bench.csv and OUT/bench.json naming the hardware."};
+               "8,000 particles in a 0.2 m and a 50 m tank (the grid's cost against the domain's size), the\n"
+               "dam break at several resolutions, and the dam break under each pressure solver: solver_wcsph,\n"
+               "solver_dfsph (its CFL step, at most the scene's time_step.max) and solver_pbf (fixed dt 4 ms), each\n"
+               "measured over the first --solver-time simulated seconds, with wall seconds per simulated second,\n"
+               "mean dt and solver iterations per step. Writes OUT/bench.csv and OUT/bench.json naming the hardware."};
   sph::use_error_prefix(app);
   app.add_option("--backends", backends, "back ends to measure (default: every usable one)");
   app.add_option("--out,-o", out, "output directory")->capture_default_str();
@@ -153,6 +200,12 @@ int main(int argc, char** argv) {
   app.add_option("--dam-sizes", dam_sizes, "dam break resolutions: particles across the column width a")
       ->capture_default_str()->check(CLI::Range(4, 400));
   app.add_option("--dam-cuda", dam_cuda_only, "an extra dam break resolution for cuda only (0: none)")->capture_default_str();
+  app.add_option("--solver-size", solver_size, "the solver workloads' dam break resolution: particles across the column width a")
+      ->capture_default_str()->check(CLI::Range(4, 400));
+  app.add_option("--solver-time", solver_time,
+                 "simulated seconds each solver workload measures, from t = 0 (after a warm-up run of --warmup steps "
+                 "that is thrown away); --steps does not apply to them")
+      ->capture_default_str()->check(CLI::Range(1e-4, 10.0));
   app.add_flag("--quick", quick, "small and short: a smoke test (under a minute)");
   std::vector<std::string> only;
   app.add_option("--workload,-w", only, "run only these workloads (repeatable; names as in the table)");
@@ -167,17 +220,26 @@ int main(int argc, char** argv) {
     repeats = 1;
     dam_sizes = {10};
     dam_cuda_only = 0;
+    solver_size = 10;
+    solver_time = 0.008;  // two PBF steps
   }
   std::vector<Workload> workloads{
-      {"thesis_cube_16", "thesis_perf_cube.json", {}, 241.0, 3.0, false},
-      {"thesis_cube_32", "thesis_perf_cube_32.json", {}, 2677.0, 18.0, false}};
+      {"thesis_cube_16", "thesis_perf_cube.json", {}, 241.0, 3.0, false, 0.0},
+      {"thesis_cube_32", "thesis_perf_cube_32.json", {}, 2677.0, 18.0, false, 0.0}};
   if (quick) workloads.pop_back();
   for (int n : dam_sizes)
     workloads.push_back({"dam_break_" + std::to_string(n), "dam_break.json",
-                         {"resolution.particles_across=" + std::to_string(n)}, 0.0, 0.0, false});
+                         {"resolution.particles_across=" + std::to_string(n)}, 0.0, 0.0, false, 0.0});
   if (dam_cuda_only > 0)
     workloads.push_back({"dam_break_" + std::to_string(dam_cuda_only), "dam_break.json",
-                         {"resolution.particles_across=" + std::to_string(dam_cuda_only)}, 0.0, 0.0, true});
+                         {"resolution.particles_across=" + std::to_string(dam_cuda_only)}, 0.0, 0.0, true, 0.0});
+  // The dam break under each pressure solver (issue 12): WCSPH and DFSPH with their adaptive steps, PBF at
+  // one 60 Hz frame in four substeps. Not named dam_break_*: studies.py's scaling chart takes those.
+  const std::string across = "resolution.particles_across=" + std::to_string(solver_size);
+  workloads.push_back({"solver_wcsph", "dam_break.json", {across, "solver=wcsph"}, 0.0, 0.0, false, solver_time});
+  workloads.push_back({"solver_dfsph", "dam_break.json", {across, "solver=dfsph"}, 0.0, 0.0, false, solver_time});
+  workloads.push_back({"solver_pbf", "dam_break.json", {across, "solver=pbf", "time_step.mode=fixed", "time_step.dt=0.004"},
+                       0.0, 0.0, false, solver_time});
   // The same 0.1 m cube of 8,000 particles in a 0.2 m and a 50 m tank: the grid's cost must follow the
   // particles, not the domain (issue 11, item 7: at most 1.5 times).
   if (!quick)
@@ -186,7 +248,7 @@ int main(int argc, char** argv) {
                            {"emitters.0.min=[0.05,0,0.05]", "emitters.0.max=[0.15,0.1,0.15]",
                             std::string("boundaries.0.max=[") + side + "," + side + "," + side + "]",
                             "resolution.particles_across=20"},
-                           0.0, 0.0, false});
+                           0.0, 0.0, false, 0.0});
 
   // Every argument is checked before the first workload runs.
   if (!only.empty()) {
@@ -225,7 +287,8 @@ int main(int argc, char** argv) {
   const std::string cpu = cpu_model(), gpu = cuda_device_name();
   std::cout << "CPU: " << cpu << ", host threads: " << host_threads() << "\nGPU: " << (gpu.empty() ? "none" : gpu)
             << "\nwarm-up " << warmup << " steps, " << steps << " measured steps x " << repeats
-            << " repeats; ms/step: median of the measured steps, time by phase: mean\n\n";
+            << " repeats; ms/step: median of the measured steps, time by phase: mean\nsolver workloads: the dam break at "
+            << solver_size << " particles across from t = 0 to " << solver_time << " s, after a warm-up run thrown away\n\n";
 
   std::vector<Result> results;
   try {
@@ -244,6 +307,12 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "\nerror: " << e.what() << "\n";
     return 1;
+  }
+  for (Result& r : results) {
+    if (r.workload.rfind("solver_", 0) != 0) continue;
+    for (const Result& base : results)
+      if (base.workload == "solver_wcsph" && base.backend == r.backend)
+        r.speedup_vs_wcsph = base.wall_per_simulated() / r.wall_per_simulated();
   }
 
   std::printf("\n%-8s %-16s %10s %11s %14s %9s %11s %11s\n", "backend", "workload", "particles", "ms/step",
@@ -266,6 +335,17 @@ int main(int argc, char** argv) {
     for (int p = 0; p < int(Phase::Count); ++p) std::printf(" %10.3f", r.phases.seconds[std::size_t(p)]);
     std::printf("\n");
   }
+  std::printf("\ntime steps and solver iterations of the measured steps (wall s per simulated s: their summed wall time\n"
+              "over the simulated time they covered; solver iterations: DFSPH's density solve, PBF's constraint solve):\n"
+              "%-8s %-16s %-6s %7s %11s %12s %12s %9s %11s %11s %7s\n", "backend", "workload", "solver", "steps", "mean dt ms",
+              "sim s/wall s", "wall s/sim s", "vs wcsph", "solver it.", "diverg. it.", "capped");
+  for (const Result& r : results) {
+    char vs_wcsph[32] = "-";
+    if (r.speedup_vs_wcsph > 0.0) std::snprintf(vs_wcsph, sizeof vs_wcsph, "%.2fx", r.speedup_vs_wcsph);
+    std::printf("%-8s %-16s %-6s %7ld %11.4f %12.4f %12.2f %9s %11.2f %11.2f %7ld\n", r.backend.c_str(), r.workload.c_str(),
+                r.solver.c_str(), r.steps, 1e3 * r.mean_dt(), 1.0 / r.wall_per_simulated(), r.wall_per_simulated(), vs_wcsph,
+                r.per_step(r.solver_iterations), r.per_step(r.divergence_iterations), r.capped_solves);
+  }
 
   std::error_code ec;
   fs::create_directories(out, ec);
@@ -274,21 +354,35 @@ int main(int argc, char** argv) {
     std::cerr << "error: cannot write results into " << out << "\n";
     return 1;
   }
-  csv << "backend,workload,particles,ms_per_step,ms_mean,ms_min,ms_max,particle_steps_per_second,speedup_vs_cpu,thesis_cpu_ms,thesis_gpu_ms";
+  csv << "backend,workload,particles,ms_per_step,ms_mean,ms_min,ms_max,particle_steps_per_second,speedup_vs_cpu,thesis_cpu_ms,thesis_gpu_ms"
+      << ",solver,steps_measured,simulated_s,mean_dt_s,wall_s_per_simulated_s,simulated_s_per_wall_s,speedup_vs_wcsph"
+      << ",solver_iterations_per_step,divergence_iterations_per_step,capped_solves";
   for (int p = 0; p < int(Phase::Count); ++p) csv << ",ms_" << phase_name(Phase(p));
   csv << ",cpu,host_threads,gpu\n";
   js << "{\n  \"cpu\": \"" << json_escape(cpu) << "\",\n  \"host_threads\": " << host_threads() << ",\n  \"gpu\": \""
      << json_escape(gpu) << "\",\n  \"warmup\": " << warmup << ", \"steps\": " << steps << ", \"repeats\": " << repeats
-     << ",\n  \"statistics\": \"ms_per_step: median of the measured steps; ms_mean and phases_ms: mean per step\""
+     << ",\n  \"solver_size\": " << solver_size << ", \"solver_time\": " << solver_time
+     << ",\n  \"statistics\": \"ms_per_step: median of the measured steps; ms_mean and phases_ms: mean per step; "
+        "wall_s_per_simulated_s: the measured steps' summed wall time over the simulated time they covered; "
+        "solver_iterations_per_step: DFSPH's density solve or PBF's constraint solve, mean over the measured steps\""
      << ",\n  \"results\": [\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const Result& r = results[i];
     const double pss = 1e3 * double(r.particles) / r.ms_per_step;
     csv << r.backend << ',' << r.workload << ',' << r.particles << ',' << r.ms_per_step << ',' << r.ms_mean << ',' << r.ms_min << ','
-        << r.ms_max << ',' << pss << ',' << r.speedup_vs_cpu << ',' << r.thesis_cpu_ms << ',' << r.thesis_gpu_ms;
+        << r.ms_max << ',' << pss << ',' << r.speedup_vs_cpu << ',' << r.thesis_cpu_ms << ',' << r.thesis_gpu_ms << ',' << r.solver
+        << ',' << r.steps << ',' << r.simulated_s << ',' << r.mean_dt() << ',' << r.wall_per_simulated() << ','
+        << 1.0 / r.wall_per_simulated() << ',' << r.speedup_vs_wcsph << ',' << r.per_step(r.solver_iterations) << ','
+        << r.per_step(r.divergence_iterations) << ',' << r.capped_solves;
     js << "    {\"backend\": \"" << r.backend << "\", \"workload\": \"" << r.workload << "\", \"particles\": " << r.particles
        << ", \"ms_per_step\": " << r.ms_per_step << ", \"ms_mean\": " << r.ms_mean << ", \"ms_min\": " << r.ms_min << ", \"ms_max\": " << r.ms_max
-       << ", \"particle_steps_per_second\": " << pss << ", \"speedup_vs_cpu\": " << r.speedup_vs_cpu << ", \"phases_ms\": {";
+       << ", \"particle_steps_per_second\": " << pss << ", \"speedup_vs_cpu\": " << r.speedup_vs_cpu << ", \"solver\": \""
+       << r.solver << "\", \"steps_measured\": " << r.steps << ", \"simulated_s\": " << r.simulated_s << ", \"mean_dt_s\": "
+       << r.mean_dt() << ", \"wall_s_per_simulated_s\": " << r.wall_per_simulated() << ", \"simulated_s_per_wall_s\": "
+       << 1.0 / r.wall_per_simulated() << ", \"speedup_vs_wcsph\": " << r.speedup_vs_wcsph
+       << ", \"solver_iterations_per_step\": " << r.per_step(r.solver_iterations)
+       << ", \"divergence_iterations_per_step\": " << r.per_step(r.divergence_iterations)
+       << ", \"capped_solves\": " << r.capped_solves << ", \"phases_ms\": {";
     for (int p = 0; p < int(Phase::Count); ++p) {
       csv << ',' << r.phases.seconds[std::size_t(p)];
       js << (p ? ", " : "") << '"' << phase_name(Phase(p)) << "\": " << r.phases.seconds[std::size_t(p)];
