@@ -93,13 +93,15 @@ struct DensityAlphaFn {
 // could only grow from step to step, since the corrections never pull; with the half, too much pressure
 // halves each step instead of pushing the fluid apart (measured: the full warm start lifted a resting column
 // within 100 steps). With warm_start off, kappa = 0. Inlet particles get none.
+constexpr float kWarmFactor = 1.0f;
+constexpr float kOmega = 0.5f;
 struct WarmStartFn {
   ParticleView p;
   float* kept;  // p.pressure or p.near_pressure
   float scale;
   int32_t warm;
   SPH_HD void operator()(int32_t i) const {
-    kept[i] = warm && p.age[i] >= 0.0f ? 0.5f * kept[i] : 0.0f;
+    kept[i] = warm && p.age[i] >= 0.0f ? kWarmFactor * kept[i] : 0.0f;
     p.kappa[i] = kept[i] * scale / p.density[i];
   }
 };
@@ -117,14 +119,23 @@ struct ErrorFn {
   GridView g;
   ParticleView p;
   float dt;
+  const float* kept;
+  float scale;
   SPH_KERNEL_FN void operator()(int32_t i) const {
     const float rest = (*c).fluids[p.fluid[i]].rest_density;
-    const float rate = p.age[i] < 0.0f ? 0.0f : dfsph_density_rate(*c, g, p, p.vel, i);
+    if (p.age[i] < 0.0f) {
+      p.kappa[i] = 0.0f;
+      p.solver_error[i] = 0.0f;
+      return;
+    }
+    const float rate = dfsph_density_rate(*c, g, p, p.vel, i);
     const float excess = kDensity ? dfsph_predicted_density(p.density[i], rate, dt) - rest : rate;
-    const float compression = excess > 0.0f ? excess : 0.0f;
-    p.kappa[i] = kDensity ? dfsph_density_stiffness(rest + compression, rest, p.alpha[i], dt)
-                          : dfsph_divergence_stiffness(compression, p.alpha[i], dt);
-    p.solver_error[i] = compression * (kDensity ? 1.0f : dt) / rest;
+    const float increment = kOmega * (kDensity ? dfsph_density_stiffness(rest + excess, rest, p.alpha[i], dt)
+                                               : dfsph_divergence_stiffness(excess, p.alpha[i], dt));
+    const float total = kept[i] * scale / p.density[i];
+    const float next = total + increment > 0.0f ? total + increment : 0.0f;
+    p.kappa[i] = next - total;
+    p.solver_error[i] = (excess > 0.0f ? excess : 0.0f) * (kDensity ? 1.0f : dt) / rest;
   }
 };
 
@@ -166,12 +177,12 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   const int32_t n = p.n;
   x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start});
   if (s.warm_start) x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, 0.0f});  // kept as it is
-  x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt});
+  x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt, kept, kDensity ? 1.0f : 1.0f / dt});
   error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
   int32_t it = 0;
   while (it < s.max_iterations && (it < min_iterations || error > double(tolerance))) {
     x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, keep});
-    x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt});
+    x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt, kept, kDensity ? 1.0f : 1.0f / dt});
     ++it;
     if (it >= min_iterations && (it % s.check_every == 0 || it == s.max_iterations))
       error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
