@@ -280,3 +280,76 @@ sph_cli_test(leaves_domain
 sph_cli_test(stays_in_domain
   --clean ${SPH_CLI_OUT}/stays_in_domain --exit 0 --stdout-line "particles_outside_domain: 0 (most in a metrics row: 0)"
   -- ${SPH_RUN} ${SPH_CLI_DATA}/leaves_domain.json -q --time 0.02 --out ${SPH_CLI_OUT}/stays_in_domain)
+
+# --- the pressure solvers (issue 12): "solver" and its block through --set, on the hydrostatic tank ----
+sph_cli_test(solver_zero_iterations
+  --exit 1 --stderr "dfsph.max_iterations=0" --stderr "dfsph.max_iterations: value 0 is out of range" --stderr "[1, 10000]"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=dfsph --set dfsph.max_iterations=0
+     --out ${SPH_CLI_OUT}/solver_zero_iterations)
+sph_cli_test(solver_unknown_name
+  --exit 1 --stderr "\"sph\"" --stderr "\"wcsph\", \"dfsph\", \"pbf\""
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=sph --out ${SPH_CLI_OUT}/solver_unknown_name)
+sph_cli_test(solver_block_of_another_solver
+  --exit 1 --stderr "dfsph: this block holds the settings of solver \"dfsph\", but solver is \"pbf\""
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=pbf --set dfsph.max_iterations=50
+     --out ${SPH_CLI_OUT}/solver_block_of_another_solver)
+# 50 ms at 5 mm spacing: gravity alone would move a particle at rest by 2.5 spacings in one step.
+sph_cli_test(solver_step_too_long
+  --exit 1 --stderr "hydrostatic_tank.json: time_step.dt" --stderr "solver \"dfsph\"" --stderr "sqrt(d / |g|) = 0.0225"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=dfsph --set time_step.mode=fixed
+     --set time_step.dt=0.05 --out ${SPH_CLI_OUT}/solver_step_too_long)
+sph_cli_test(dfsph_tank_20_steps
+  --exit 0 --clean ${SPH_CLI_OUT}/dfsph_tank
+  --stdout-line "solver: dfsph" --stdout-line "steps: 20" --stdout-prefix "density_solver_iterations: mean "
+  --stdout-prefix "divergence_solver_iterations: mean " --stdout-line "solver_capped_steps: 0"
+  --csv-column ${SPH_CLI_OUT}/dfsph_tank/metrics.csv solver_iterations
+  --csv-column ${SPH_CLI_OUT}/dfsph_tank/metrics.csv solver_density_error
+  --csv-column ${SPH_CLI_OUT}/dfsph_tank/metrics.csv divergence_iterations
+  --csv-column ${SPH_CLI_OUT}/dfsph_tank/metrics.csv divergence_error
+  --csv-complete ${SPH_CLI_OUT}/dfsph_tank/metrics.csv
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=dfsph -n 20 -q --out ${SPH_CLI_OUT}/dfsph_tank)
+# PBF at its dam-break target step, 4 ms, with the default 4 iterations.
+sph_cli_test(pbf_tank_10_steps
+  --exit 0 --clean ${SPH_CLI_OUT}/pbf_tank
+  --stdout-line "solver: pbf" --stdout-line "steps: 10" --stdout-line "constraint_iterations: mean 4, max 4"
+  --csv-column ${SPH_CLI_OUT}/pbf_tank/metrics.csv solver_iterations
+  --csv-column ${SPH_CLI_OUT}/pbf_tank/metrics.csv solver_density_error
+  --csv-complete ${SPH_CLI_OUT}/pbf_tank/metrics.csv
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=pbf --set time_step.mode=fixed
+     --set time_step.dt=0.004 -n 10 -q --out ${SPH_CLI_OUT}/pbf_tank)
+
+# Non-convergence is reported, not hidden: a tolerance no solve reaches in the few iterations allowed.
+# run_check.sh checks the words; the summary's count of capped solves must be above zero.
+function(sph_cli_capped_test name)
+  add_test(NAME cli_${name}
+           COMMAND bash -c "out=$(bash \"$0\" \"$@\"); status=$?; echo \"$out\"; [ $status -eq 0 ] || exit 1; echo \"$out\" | grep -Eq '^solver_capped_steps: [1-9][0-9]*$' || { echo 'FAILED: solver_capped_steps is not above 0'; exit 1; }"
+                   ${SPH_CLI_CHECK} ${ARGN}
+           WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  set_tests_properties(cli_${name} PROPERTIES TIMEOUT 120 LABELS cli)
+endfunction()
+# DFSPH with one iteration against a tolerance of 1e-7: the first steps from the lattice at rest density
+# converge, the rest do not; the run goes on (exit 0) and says so.
+sph_cli_capped_test(dfsph_not_converged
+  --exit 0 --clean ${SPH_CLI_OUT}/dfsph_capped
+  --stderr "warning: the density solver did not converge in " --stderr " of 30 steps" --stderr "dfsph.max_iterations = 1"
+  --stdout-line "density_solver_iterations: mean 1, max 1"
+  --csv-column ${SPH_CLI_OUT}/dfsph_capped/metrics.csv solver_density_error
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=dfsph --set dfsph.max_iterations=1
+     --set dfsph.min_iterations=1 --set dfsph.density_tolerance=1e-7 -n 30 -q --out ${SPH_CLI_OUT}/dfsph_capped)
+# PBF with two iterations against 1e-7: every step is capped, the column holds for 30 steps (exit 0).
+sph_cli_capped_test(pbf_not_converged
+  --exit 0 --clean ${SPH_CLI_OUT}/pbf_capped
+  --stderr "warning: the constraint solve did not converge in 30 of 30 steps" --stderr "pbf.iterations = 2"
+  --stdout-line "constraint_iterations: mean 2, max 2" --stdout-line "solver_capped_steps: 30"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=pbf --set pbf.iterations=2
+     --set pbf.density_tolerance=1e-7 -n 30 -q --out ${SPH_CLI_OUT}/pbf_capped)
+# With one iteration at 4 ms the compression left by each step piles up (about 2% a step) until the run
+# stops with the blow-up message (exit 3); the capped solves are still reported.
+sph_cli_capped_test(pbf_one_iteration_blows_up
+  --exit 3 --clean ${SPH_CLI_OUT}/pbf_one_iteration
+  --stderr "became unstable" --stderr "mean compression" --stderr "Raise pbf.iterations"
+  --stderr "warning: the constraint solve did not converge in " --stderr "pbf.iterations = 1"
+  --min-lines ${SPH_CLI_OUT}/pbf_one_iteration/metrics.csv 2
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=pbf --set pbf.iterations=1
+     --set pbf.density_tolerance=1e-7 --set time_step.mode=fixed --set time_step.dt=0.004 -n 30 -q
+     --out ${SPH_CLI_OUT}/pbf_one_iteration)

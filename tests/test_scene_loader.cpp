@@ -1,6 +1,7 @@
 // Scene loading (src/common/scene_loader.cpp) and guided creation's refusals (guided_creation.cpp).
 // The shipped scenes must load; every kind of bad input must give a SceneError whose message names the
 // file and the key and says what is allowed, never a crash, a silent default or a huge allocation.
+// The pressure solver's keys ("solver", "dfsph", "pbf") are tested in test_scene_solver.cpp.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -12,46 +13,13 @@
 #include "common/guided_creation.h"
 #include "common/particle_state.h"
 #include "common/scene.h"
+#include "scene_text.h"
 
 namespace fs = std::filesystem;
 using Catch::Contains;
 using sph::SceneError;
 
-namespace {
-
-// A small valid scene assembled from parts, so each test changes exactly one thing.
-struct SceneText {
-  std::string fluids = R"([{ "name": "water", "rest_density": 1000, "speed_of_sound": 20, "viscosity": 0.001 }])";
-  std::string emitters = R"([{ "type": "box", "fluid": "water", "min": [0, 0, 0], "max": [0.1, 0.1, 0.1] }])";
-  std::string boundaries = R"([{ "type": "box", "min": [0, 0, 0], "max": [0.3, 0.3, 0.3] }])";
-  std::string resolution = R"({ "particles_across": 8 })";
-  std::string extra;  // more top-level members, each followed by a comma
-
-  std::string str() const {
-    return "{ " + extra + R"("name": "test", "fluids": )" + fluids + R"(, "emitters": )" + emitters +
-           R"(, "boundaries": )" + boundaries + R"(, "resolution": )" + resolution + " }";
-  }
-};
-
-sph::Scene parse(const SceneText& t, const std::vector<std::string>& overrides = {}) {
-  return sph::parse_scene(t.str(), "test.json", overrides);
-}
-// The base scene with one part replaced.
-sph::Scene parse_with(std::string SceneText::*part, const std::string& text) {
-  SceneText t;
-  t.*part = text;
-  return parse(t);
-}
-sph::Scene parse_with_extra(const std::string& extra) { return parse_with(&SceneText::extra, extra + ", "); }
-sph::Scene parse_with_boundary(const std::string& b) { return parse_with(&SceneText::boundaries, "[" + b + "]"); }
-sph::Scene parse_with_emitter(const std::string& e) { return parse_with(&SceneText::emitters, "[" + e + "]"); }
-sph::Scene parse_with_fluid(const std::string& f) { return parse_with(&SceneText::fluids, "[" + f + "]"); }
-sph::Scene parse_with_resolution(const std::string& r) { return parse_with(&SceneText::resolution, r); }
-
-std::string scenes_dir() { return std::string(SPH_SOURCE_DIR) + "/scenes"; }
-std::string data_dir() { return std::string(SPH_SOURCE_DIR) + "/tests/data"; }
-
-}  // namespace
+using namespace scene_text;
 
 TEST_CASE("loader: the base test scene is valid", "[loader]") {
   const sph::Scene s = parse(SceneText{});

@@ -406,7 +406,11 @@ void read_solver(ObjectReader& r, Scene& s) {
     d.divergence_tolerance = float(dr.number("divergence_tolerance", d.divergence_tolerance, 0.0, 1.0, true));
     d.min_iterations = int32_t(dr.integer("min_iterations", d.min_iterations, 1, 10000));
     d.max_iterations = int32_t(dr.integer("max_iterations", d.max_iterations, 1, 10000));
-    if (d.min_iterations > d.max_iterations) fail(source, "dfsph.min_iterations", "must not exceed dfsph.max_iterations");
+    if (d.min_iterations > d.max_iterations)  // name the values: a lowered max_iterations meets the default min
+      fail(source, "dfsph.min_iterations",
+           "value " + std::to_string(d.min_iterations) + " must not exceed dfsph.max_iterations = " +
+               std::to_string(d.max_iterations) + " (min_iterations is " + std::to_string(dfsph_defaults().min_iterations) +
+               " unless set)");
     d.check_every = int32_t(dr.integer("check_every", d.check_every, 1, 100));
     d.divergence_solver = dr.boolean("divergence_solver", d.divergence_solver != 0) ? 1 : 0;
     d.warm_start = dr.boolean("warm_start", d.warm_start != 0) ? 1 : 0;
@@ -422,8 +426,15 @@ void read_solver(ObjectReader& r, Scene& s) {
     b.relaxation = float(pr.number("relaxation", b.relaxation, 0.0, 100.0));
     b.scorr_k = float(pr.number("scorr_k", b.scorr_k, 0.0, 10.0));
     b.scorr_n = int32_t(pr.integer("scorr_n", b.scorr_n, 1, 16));
-    b.scorr_dq = float(pr.number("scorr_dq", b.scorr_dq, 0.0, 1.0, true));
-    if (b.scorr_dq >= 1.0f) fail(source, "pbf.scorr_dq", "must be below 1 (a fraction of the support h)");
+    // dq / h is open at both ends, which number() does not print: checked here, in the stored precision
+    // (W(dq) at dq = 1 is 0, the denominator of s_corr).
+    const float dq = float(pr.number("scorr_dq", b.scorr_dq, -HUGE_VAL, HUGE_VAL));
+    if (!(dq > 0.0f && dq < 1.0f)) {
+      std::ostringstream os;
+      os << "value " << dq << " is out of range: allowed (0, 1), a fraction of the support h";
+      fail(source, "pbf.scorr_dq", os.str());
+    }
+    b.scorr_dq = dq;
     b.clamp_expansion = pr.boolean("clamp_expansion", b.clamp_expansion != 0) ? 1 : 0;
     b.xsph_c = float(pr.number("xsph", b.xsph_c, 0.0, 1.0));
     b.vorticity_epsilon = float(pr.number("vorticity_epsilon", b.vorticity_epsilon, 0.0, 1000.0));
