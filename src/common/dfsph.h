@@ -9,16 +9,17 @@
 // same position, adds W but no gradient (there is no direction). Positions and masses come from the grid
 // phase's packed records (pos_mass).
 //
-// Walls: with mirror walls (sph.walls = "mirror") the neighbours' wall ghosts (mirror_walls.h) sample the
-// solid beyond the wall, as boundary particles do in [BK15] (their boundary handling is Akinci et al. 2012's):
-// a ghost adds its mass to the density, is at rest (the walls do not move) in the density rate, and pushes
-// with the particle's own stiffness only, a_i -= m_b (kappa_i / rho_i) grad W_ib (the solid has no pressure of
-// its own). alpha counts the ghosts where the particle's own velocity change acts on them (|sum m grad W|^2)
-// but not among the neighbours that move in response (sum |m grad W|^2): with those three choices alpha is
-// exactly the Jacobi diagonal d(D rho_i / Dt) / d kappa_i. Ghosts that moved with their particles (mirrored
-// velocities) and pushed with its stiffness made that diagonal up to twice alpha's at a wall and more in a
-// corner, and the iteration diverged there (a resting column's corners, within 6 steps).
-//
+// Walls: with mirror walls (sph.walls = "mirror") the neighbours' wall ghosts (mirror_walls.h) stand for the
+// fluid beyond the wall. A ghost adds its mass to the density, pushes with its particle's stiffness as the
+// particle would (a_i -= m_b (kappa_i / rho_i + kappa_b / rho_b) grad W_ib, so the wall holds a hydrostatic
+// column), but is at rest in the density rate and in alpha (it counts in |sum m grad W|^2, not among the
+// neighbours that move in response): the solver's corrections then see the wall as solid, and alpha is the
+// Jacobi diagonal d(D rho_i / Dt) / d kappa_i but for the ghosts of i itself. Measured alternatives: ghosts
+// that moved with their particles (mirrored velocities) in the rate and alpha made that diagonal up to twice
+// alpha's at a wall, and the solve diverged in the corners of a resting column within 6 steps; ghosts that
+// pushed with kappa_i alone gave the wall no pressure gradient, so the column's edges, with a quarter of
+// their neighbours real, were squeezed up at 1 m/s.
+
 // Units (SI): m [kg], rho [kg/m^3], grad W [1/m^4], alpha [m^5/kg], kappa [m^2/s^2], acceleration [m/s^2].
 #pragma once
 
@@ -35,6 +36,16 @@ namespace sph {
 // spline; in the bulk of a lattice with h = 1.95 d the denominator is about 15 of those squared, so only
 // isolated particles and those with neighbours only at the rim of the support are affected.)
 constexpr float kDfsphAlphaEps = 1e-6f;
+
+// The solves' under-relaxation: each iteration moves a particle's stiffness by this fraction of the paper's
+// kappa (src/solvers/dfsph.h, ErrorFn, says why).
+constexpr float kDfsphRelaxation = 0.5f;
+
+// A particle takes part in the divergence solve when it has at least this fraction of the neighbours of a
+// particle at rest density in the bulk (4/3 pi h^3 rho0 / m), wall ghosts included: about 20 at the default
+// 32, SPlisHSPlasH's threshold. Below it (splashes, the free surface) the rate measures missing neighbours,
+// not a divergence, and correcting it flung surface particles up at steps of 4 ms (measured).
+constexpr float kDfsphMinSupport = 0.6f;
 
 // Seed eq. 3: dt <= 0.4 d / v_max, d the particle diameter (spacing).
 constexpr float kDfsphCflFactor = 0.4f;
@@ -79,6 +90,19 @@ SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, con
   return p.density[i] / denominator;
 }
 
+// 1 when particle i has kDfsphMinSupport of a bulk particle's neighbours within h (wall ghosts included),
+// else 0.
+SPH_HD inline int32_t dfsph_support(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const FluidConstants& f = c.fluids[p.fluid[i]];
+  const float bulk = 4.0f / 3.0f * 3.14159265f * k.h2 * k.h * f.rest_density / f.mass;
+  int32_t count = 0;
+  for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t, Vec3, float) { ++count; });
+  const NearWalls walls = c.mirror_walls ? near_walls(c, xyz(p.pos_mass[i])) : NearWalls{};
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t, int32_t, Vec3, float) { ++count; });
+  return float(count) >= kDfsphMinSupport * bulk ? 1 : 0;
+}
+
 // Seed eq. 18: D rho_i / Dt = sum_j m_j (v_i - v_j) . grad W_ij, with the velocities vel (the solver's
 // predicted v*, not necessarily p.vel); wall ghosts are at rest, so a particle approaching a wall compresses.
 // Positive: compression. Exact zero for a rigid translation without walls; for a rigid rotation
@@ -119,7 +143,7 @@ SPH_HD inline float dfsph_divergence_stiffness(float density_rate, float alpha, 
 
 // Seed eqs. 15-17 (the seed prints kappa_j / rho_i and drops the minus sign of eq. 16; [BK15] has both right):
 // a_i = -sum_j m_j (kappa_i / rho_i + kappa_j / rho_j) grad W_ij, kappa either stiffness, rho = p.density; a
-// wall ghost pushes with kappa_i / rho_i alone (see above). The solver updates v_i += dt a_i. Each pair term of two
+// wall ghost of j carries j's kappa and density (see above). The solver updates v_i += dt a_i. Each pair term of two
 // particles is antisymmetric (grad W_ji = -grad W_ij), so without walls sum_i m_i a_i = 0: the pressure
 // solves conserve linear momentum (the walls take up what the ghosts give). [m/s^2]
 SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const GridView& grid, const ParticleView& p,

@@ -38,12 +38,13 @@ struct Spawn {
 
 // The incompressible solvers' per-particle unknowns (src/solvers/dfsph.h, pbf.h): scratch like the derived
 // fields, sized only while such a solver runs (fit_derived), written before every use within a step.
-// DFSPH: alpha [m^5/kg], kappa [m^2/s^2] and solver_error (each particle's share of the error the solver
-// checks). PBF: lambda [m^2], solver_error, delta_pos (the position correction [m], then the vorticity
+// DFSPH: alpha [m^5/kg], kappa [m^2/s^2], solver_error (each particle's share of the error the solver
+// checks) and support (1: enough neighbours for the divergence solve, dfsph_support). PBF: lambda [m^2], solver_error, delta_pos (the position correction [m], then the vorticity
 // confinement's acceleration [m/s^2]) and omega (vorticity [1/s]). DFSPH's warm start, which must survive
 // the reorder, is kept in the particle fields pressure and near_pressure (particle_view.h).
 #define SPH_SOLVER_FIELDS(X) \
-  X(float, alpha) X(float, kappa) X(float, lambda) X(float, solver_error) X(Vec3, delta_pos) X(Vec3, omega)
+  X(float, alpha) X(float, kappa) X(float, lambda) X(float, solver_error) X(Vec3, delta_pos) X(Vec3, omega) \
+  X(int32_t, support)
 
 struct ParticleState {
 #define SPH_DECLARE_FIELD(type, name) std::vector<type> name;
@@ -113,7 +114,8 @@ struct ParticleState {
                         pressure.data(),      near_pressure.data(), age.data(),      fluid.data(),
                         id.data(),            pos_start.data(),     pos_mass.data(), vel_inv_rho.data(),
                         pressure_rho2.data(), near_pressure_rho2.data(), alpha.data(),       kappa.data(),
-                        lambda.data(),        solver_error.data(),       delta_pos.data(),   omega.data()};
+                        lambda.data(),        solver_error.data(),       delta_pos.data(),   omega.data(),
+                        support.data()};
   }
 };
 
@@ -127,8 +129,8 @@ struct ParticleState {
 // either.
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
 constexpr std::size_t kDerivedFieldBytes = 2 * sizeof(Vec4) + 2 * sizeof(float);
-// DFSPH and PBF add their solver fields, 40 bytes, counted here for every solver (not re-measured).
-constexpr std::size_t kSolverFieldBytes = 4 * sizeof(float) + 2 * sizeof(Vec3);
+// DFSPH and PBF add their solver fields, 44 bytes, counted here for every solver (not re-measured).
+constexpr std::size_t kSolverFieldBytes = 4 * sizeof(float) + 2 * sizeof(Vec3) + sizeof(int32_t);
 constexpr std::size_t kBytesPerParticle = 8 * kParticleFieldBytes + kDerivedFieldBytes + kSolverFieldBytes;
 
 }  // namespace sph

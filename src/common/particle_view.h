@@ -39,6 +39,7 @@ struct ParticleView {
   float* solver_error;  // each particle's share of the error the solver checks (dimensionless)
   Vec3* delta_pos;      // PBF: position correction [m]; after the solve, vorticity confinement [m/s^2]
   Vec3* omega;          // PBF: vorticity [1/s]
+  int32_t* support;     // DFSPH: 1 where the neighbourhood is full enough for the divergence solve
 };
 
 // The grid phase's part of the derived fields, after its reorder: particle i's position with its mass

@@ -200,7 +200,8 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(lambda.data()),
                         thrust::raw_pointer_cast(solver_error.data()),
                         thrust::raw_pointer_cast(delta_pos.data()),
-                        thrust::raw_pointer_cast(omega.data())};
+                        thrust::raw_pointer_cast(omega.data()),
+                        thrust::raw_pointer_cast(support.data())};
   }
 };
 

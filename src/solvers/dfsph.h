@@ -17,13 +17,15 @@
 //   recycle
 // dt is the driver's (Simulation::advance: the CFL step, seed eq. 3, from the speeds this step leaves).
 //
-// Both solves: only compression is corrected (ErrorFn), so a free surface is not pulled together; they
-// warm-start
-// from half the last step's pressures ([BK15] section 4.3; WarmStartFn), kept per particle in the fields pressure (rho kappa,
-// [Pa]) and near_pressure (rho kappa_v dt, [Pa s]), which survive the grid's reorder and do not depend on dt.
-// Convergence: one deterministic reduction (reduction.h) per check, every check_every iterations after the
-// minimum, the same on every back end; a solve that reaches max_iterations above its tolerance is flagged
-// (SolverStats::*_capped) for the run's metrics and summary.
+// Both solves are a projected, under-relaxed Jacobi iteration for "no compression, no negative pressure"
+// (ErrorFn): each particle's total stiffness moves by half the paper's kappa (either sign) and never below 0,
+// so a particle with more pressure than it needs (after a warm start from a faster step, at a free surface)
+// loses it, and none ever pulls. They warm-start from the last step's pressures ([BK15] section 4.3), kept
+// per particle in the fields pressure (rho kappa, [Pa]) and near_pressure (rho kappa_v dt, [Pa s]), which
+// survive the grid's reorder and do not depend on dt. Convergence: the mean residual, one deterministic
+// reduction (reduction.h) per check, every check_every iterations after the minimum, the same on every back
+// end; a solve that reaches max_iterations above its tolerance is flagged (SolverStats::*_capped) for the
+// run's metrics and summary.
 #pragma once
 
 #include <cstdint>
@@ -74,7 +76,8 @@ struct AdvectFn {
   }
 };
 
-// rho_i (seed eq. 7) and then alpha_i (eq. 9), which reads rho_i only of the particle's own.
+// rho_i (seed eq. 7), then alpha_i (eq. 9), which reads rho_i only of the particle's own, and whether its
+// neighbourhood is full enough for the divergence solve (dfsph_support).
 template <class C>
 struct DensityAlphaFn {
   C c;
@@ -83,36 +86,36 @@ struct DensityAlphaFn {
   SPH_KERNEL_FN void operator()(int32_t i) const {
     p.density[i] = dfsph_density(*c, g, p, i);
     p.alpha[i] = dfsph_alpha(*c, g, p, i);
+    p.support[i] = dfsph_support(*c, g, p, i);
   }
 };
 
-// The warm start ([BK15] section 4.3): half the pressure the last step's solve ended with, kappa = P / (2 rho)
-// (density solver, scale = 1) or kappa_v = P_v / (2 rho dt) (divergence solver, scale = 1 / dt). The solve
-// then adds what is still missing, so a resting column ends each step with half its pressure from the warm
-// start and half from the iterations. The full pressure (SPlisHSPlasH's comment keeps the factor 0.5 too)
-// could only grow from step to step, since the corrections never pull; with the half, too much pressure
-// halves each step instead of pushing the fluid apart (measured: the full warm start lifted a resting column
-// within 100 steps). With warm_start off, kappa = 0. Inlet particles get none.
-constexpr float kWarmFactor = 1.0f;
-constexpr float kOmega = 0.5f;
+// The warm start ([BK15] section 4.3): the pressure the last step's solve ended with, kappa = P / rho (density
+// solver, scale = 1) or kappa_v = P_v / (rho dt) (divergence solver, scale = 1 / dt). With warm_start off,
+// kappa = 0. Inlet particles get none.
 struct WarmStartFn {
   ParticleView p;
   float* kept;  // p.pressure or p.near_pressure
   float scale;
   int32_t warm;
   SPH_HD void operator()(int32_t i) const {
-    kept[i] = warm && p.age[i] >= 0.0f ? kWarmFactor * kept[i] : 0.0f;
+    if (!warm || p.age[i] < 0.0f) kept[i] = 0.0f;
     p.kappa[i] = kept[i] * scale / p.density[i];
   }
 };
 
-// The error of one particle and the stiffness of its next correction. Density solver (kDensity): the
-// predicted compression max(rho* - rho0, 0) (seed eq. 10) gives kappa = (rho* - rho0) alpha / dt^2 (eq. 14);
-// divergence solver: max(D rho / Dt, 0) gives kappa_v = (D rho / Dt) alpha / dt (eq. 19). Only compression is
-// corrected, so every correction pushes apart and a particle's pressure within a step only grows: a one-sided
-// Jacobi iteration, which converges where the two-sided one (corrections of either sign, the total pressure
-// kept >= 0) diverged within 30 steps of a resting column, even with penalty walls (measured).
-// error: the compression over rho0, max(rho* - rho0, 0) / rho0 or dt max(D rho / Dt, 0) / rho0.
+// The residual of one particle and its next correction. Density solver (kDensity): the predicted excess
+// rho* - rho0 (seed eq. 10) gives the paper's kappa = (rho* - rho0) alpha / dt^2 (eq. 14); divergence solver:
+// D rho / Dt gives kappa_v = (D rho / Dt) alpha / dt (eq. 19), zero where the particle lacks support
+// (p.support == 0: a splash or a surface particle, whose rate is not a divergence of the fluid, as
+// SPlisHSPlasH does). The particle's total stiffness, kept[i] scale / rho_i (warm start included), moves by
+// kDfsphRelaxation times that and is clamped at 0; kappa[i] is the change made. The residual is |excess|
+// where pressure is left and the compression max(excess, 0) where there is none, over rho0 (times dt for
+// the divergence), whose mean the solve drives below its tolerance.
+// Why half a step: with the full step (the paper's Jacobi) corrections of either sign diverged in a resting
+// column within 30 steps; corrections of one sign (compression only, SPlisHSPlasH) converge but cannot take
+// back pressure once given, so a warm-started column was pushed apart, and without the warm start it could
+// not take steps above 2.5 ms (measured, tests/test_solvers.cpp's column).
 template <class C, bool kDensity>
 struct ErrorFn {
   C c;
@@ -129,13 +132,15 @@ struct ErrorFn {
       return;
     }
     const float rate = dfsph_density_rate(*c, g, p, p.vel, i);
-    const float excess = kDensity ? dfsph_predicted_density(p.density[i], rate, dt) - rest : rate;
-    const float increment = kOmega * (kDensity ? dfsph_density_stiffness(rest + excess, rest, p.alpha[i], dt)
+    float excess = kDensity ? dfsph_predicted_density(p.density[i], rate, dt) - rest : rate;
+    if (!kDensity && p.support[i] == 0) excess = 0.0f;
+    const float increment = kDfsphRelaxation * (kDensity ? dfsph_density_stiffness(rest + excess, rest, p.alpha[i], dt)
                                                : dfsph_divergence_stiffness(excess, p.alpha[i], dt));
     const float total = kept[i] * scale / p.density[i];
     const float next = total + increment > 0.0f ? total + increment : 0.0f;
     p.kappa[i] = next - total;
-    p.solver_error[i] = (excess > 0.0f ? excess : 0.0f) * (kDensity ? 1.0f : dt) / rest;
+    const float residual = next > 0.0f ? fabsf(excess) : (excess > 0.0f ? excess : 0.0f);
+    p.solver_error[i] = residual * (kDensity ? 1.0f : dt) / rest;
   }
 };
 
@@ -161,7 +166,7 @@ struct SolverErrorOf {
   SPH_HD float operator()(int32_t i) const { return error[i]; }
 };
 
-// One of the two solves ([BK15] algorithms 2 and 3): warm start, then corrections until the mean error is
+// One of the two solves ([BK15] algorithms 2 and 3): warm start, then corrections until the mean residual is
 // within tolerance (checked every check_every iterations once min_iterations are done) or max_iterations.
 // Returns the iterations; error: the mean error the solve ended at; capped: it stopped at the cap above tolerance.
 template <class Exec, bool kDensity>
