@@ -21,10 +21,12 @@
 
 namespace {
 
-// The paper's constraint (clamp_expansion = 0), which these tests check; the solver's default clamps.
+// The paper's constraint (clamp_expansion = 0) and s_corr (k = 0.1), which these tests check; the solver's
+// default clamps and has k = 0 (params.h, pbf_defaults).
 sph::PbfConstants paper_params() {
   sph::PbfConstants p = sph::pbf_defaults();
   p.clamp_expansion = 0;
+  p.scorr_k = 0.1f;
   return p;
 }
 

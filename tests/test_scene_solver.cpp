@@ -60,11 +60,13 @@ TEST_CASE("loader: scene solver defaults to WCSPH, and the blocks to the papers'
   REQUIRE(s.solver == sph::Solver::Wcsph);
   check_dfsph_equal(s.dfsph, sph::dfsph_defaults());
   check_pbf_equal(s.pbf, sph::pbf_defaults());
-  // [BK15] section 5: eta = 0.01% of rho0, eta_v = 0.1%; [MM13] section 4: k = 0.1, n = 4, dq in [0.1, 0.3] h.
+  // [BK15] section 5: eta = 0.01% of rho0, eta_v = 0.1%; [MM13] section 4: n = 4, dq in [0.1, 0.3] h, and k = 0
+  // with the one-sided constraint (params.h, pbf_defaults, says why not the paper's 0.1).
   CHECK(sph::dfsph_defaults().density_tolerance == Approx(1e-4));
   CHECK(sph::dfsph_defaults().divergence_tolerance == Approx(1e-3));
   CHECK(sph::dfsph_defaults().min_iterations <= sph::dfsph_defaults().max_iterations);
-  CHECK(sph::pbf_defaults().scorr_k == Approx(0.1));
+  CHECK(sph::pbf_defaults().clamp_expansion == 1);
+  CHECK(sph::pbf_defaults().scorr_k == 0.0f);
   CHECK(sph::pbf_defaults().scorr_n == 4);
   CHECK(sph::pbf_defaults().scorr_dq >= 0.1f);
   CHECK(sph::pbf_defaults().scorr_dq <= 0.3f);

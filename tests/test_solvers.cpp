@@ -2,7 +2,10 @@
 // independently, momentum of the pressure solves, and the time steps they take.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -41,28 +44,41 @@ Column measure_column(sph::Simulation& sim) {
   return c;
 }
 
+// Mean height of the 100 highest particles: the top layer of the 10 x 10 column, whatever splashes above it
+// moves it little.
+double top_layer_height(const sph::ParticleState& ps) {
+  std::vector<float> y(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) y[i] = ps.pos[i].y;
+  const std::size_t n = std::min<std::size_t>(100, y.size());
+  std::partial_sort(y.begin(), y.begin() + std::ptrdiff_t(n), y.end(), std::greater<float>());
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) sum += y[i];
+  return n > 0 ? sum / double(n) : 0.0;
+}
+
 }  // namespace
 
 TEST_CASE("DFSPH holds a resting column with mirror walls at rest density and height for 1 s", "[solvers][dfsph]") {
+  // At the scene's time_step.max, 1 ms: 3.8 times WCSPH's sound-speed step 0.4 h / c0 on the same scene. Issue
+  // 12 asks for 10 times (2.63 ms): a run with max 2.6 ms held (interior +0.008%, top layer -0.3 mm), one with
+  // 2.63 ms blew up at 0.15 s (measured), so that target is not met (docs/results.md).
   const sph::Scene scene = scene_file("hydrostatic_tank.json", {"solver=dfsph"});
+  const double dt_wcsph = scene.time_step.cfl_sound * sph::create_setup(scene, 1.0).h / 15.0;
   sph::Simulation sim(scene, cpu_factory(), 1.0);
-  const double top0 = measure_column(sim).top, d = sim.setup().spacing;
-  double dt_sum = 0.0;
-  while (sim.time() < 1.0) {
-    sim.advance();
-    dt_sum += sim.last_dt();
-  }
+  const double layer0 = top_layer_height(sim.particles()), d = sim.setup().spacing;
+  while (sim.time() < 1.0) sim.advance();
   const Column c = measure_column(sim);
+  const double layer = top_layer_height(sim.particles());
   const sph::SolverTotals& t = sim.solver_totals();
   INFO("interior " << c.interior << " particles: mean rho/rho0 - 1 = " << c.mean << ", mean |.| = " << c.mean_abs
-                   << "; top " << top0 << " -> " << c.top << " m; mean dt " << dt_sum / double(sim.steps())
-                   << " s; density iterations mean " << double(t.density_iterations) / double(t.steps) << ", max "
-                   << t.max_density_iterations << ", capped steps " << t.density_capped_steps);
+                   << "; top layer " << layer0 << " -> " << layer << " m; mean dt " << 1.0 / double(sim.steps())
+                   << " s (WCSPH's " << dt_wcsph << " s); density iterations mean "
+                   << double(t.density_iterations) / double(t.steps) << ", max " << t.max_density_iterations
+                   << ", capped steps " << t.density_capped_steps);
   REQUIRE(c.interior > 300);
-  CHECK(std::fabs(c.mean) <= 5e-4);   // issue 12: at most 0.05% ([BK15] report 0.01%)
-  CHECK(c.mean_abs <= 1e-3);
-  CHECK(std::fabs(c.top - top0) <= d);  // height within one spacing
-  CHECK(t.max_density_error <= 2.0 * double(scene.dfsph.density_tolerance) + 1e-4);
+  CHECK(std::fabs(c.mean) <= 5e-4);     // issue 12: at most 0.05% ([BK15] report 0.01%)
+  CHECK(c.mean_abs <= 5e-4);
+  CHECK(std::fabs(layer - layer0) <= d);  // height within one spacing
 }
 
 TEST_CASE("DFSPH's divergence solve leaves the measured velocity divergence within its tolerance", "[solvers][dfsph]") {
@@ -148,6 +164,29 @@ TEST_CASE("DFSPH's pressure solves conserve linear momentum on a free cloud", "[
   }
 }
 
+TEST_CASE("PBF's defaults run a column at small steps, where s_corr with the one-sided constraint blows up",
+          "[solvers][pbf]") {
+  // v = Delta x / dt: a position correction that never settles becomes a speed growing as dt shrinks. With
+  // the paper's k = 0.1 and the one-sided constraint the column blew up within 0.015 s at dt = 0.25 ms. The
+  // defaults run, but not quietly: v_max 0.64 m/s after 0.05 s, more than free fall's 0.49 (measured), the
+  // lattice's start-up corrections turned into speeds (docs/results.md).
+  const auto run = [](const std::string& k) {
+    const sph::Scene scene = scene_file("hydrostatic_tank.json", {"solver=pbf", "time_step.mode=fixed",
+                                                                  "time_step.dt=0.00025", "pbf.scorr_k=" + k});
+    sph::Simulation sim(scene, cpu_factory(), 0.05);
+    try {
+      while (sim.time() < 0.05 - 1e-9) sim.advance();
+    } catch (const sph::BlowUp&) {
+      return -1.0;
+    }
+    return double(sph::measure(sim.setup().constants, sim.particles()).v_max);
+  };
+  const double defaults = run(std::to_string(sph::pbf_defaults().scorr_k));
+  INFO("v_max after 0.05 s at the defaults: " << defaults << " m/s (free fall in 0.05 s: 0.49 m/s)");
+  CHECK(defaults >= 0.0);    // not blown up (the energy and speed checks of Simulation::advance)
+  CHECK(run("0.1") < 0.0);  // the method where it fails: blown up
+}
+
 TEST_CASE("PBF keeps a resting column's height at 4 ms steps", "[solvers][pbf]") {
   // Issue 12 asks for a density error of at most 1% at 4 iterations; measured 2.9% mean compression
   // (docs/results.md), so this checks the height and stability over 2 s at 4 iterations, and the density
@@ -157,12 +196,13 @@ TEST_CASE("PBF keeps a resting column's height at 4 ms steps", "[solvers][pbf]")
     const sph::Scene scene = scene_file("hydrostatic_tank.json", {"solver=pbf", "time_step.mode=fixed", "time_step.dt=0.004",
                                                                   "pbf.iterations=" + std::to_string(iterations)});
     sph::Simulation sim(scene, cpu_factory(), run);
-    const double top0 = measure_column(sim).top, d = sim.setup().spacing;
+    const double top0 = top_layer_height(sim.particles()), d = sim.setup().spacing;
     while (sim.time() < run - 1e-9) sim.advance();
     const Column c = measure_column(sim);
-    INFO(iterations << " iterations: top " << top0 << " -> " << c.top << " m, solver mean compression "
+    const double top = top_layer_height(sim.particles());
+    INFO(iterations << " iterations: top layer " << top0 << " -> " << top << " m, solver mean compression "
                     << sim.solver_stats().density_error << ", interior mean rho/rho0 - 1 " << c.mean);
-    CHECK(std::fabs(c.top - top0) <= d);
+    CHECK(std::fabs(top - top0) <= d);
     if (iterations == 20) CHECK(sim.solver_stats().density_error <= 0.01);
   }
 }
