@@ -10,6 +10,9 @@ pressure prevents, and accuracy against cost. Runs build/sph_run and writes CSV 
   accuracy-cost    dam-break surge-front error and water-jet range error against wall time per simulated
                    second, one point per method (integrator, equation of state, tensile handling, walls), back end,
                    resolution and time step; unstable runs listed; Pareto front marked
+  solvers          per pressure solver (WCSPH, DFSPH, PBF; issue 12): the largest stable fixed time step on the
+                   dam break, and the dam-break surge-front error against wall time per simulated second
+                   at several resolutions, each solver at its own step (solvers.csv, solvers.png)
   scaling          ms per step against particles, per back end (from sph_bench's bench.csv, if given)
 
 usage: benchmarks/studies.py [--quick] [--out out/studies] [--bench out/bench/bench.csv]
@@ -182,6 +185,61 @@ def accuracy_cost(args, out):
     return rows
 
 
+# Each solver as a user would run it: its scene keys and its own time step ("adaptive": the scene's adaptive
+# step, the CFL step for DFSPH; a number: that fixed step).
+SOLVERS = {"wcsph": ([], "adaptive"), "dfsph": (["solver=dfsph"], "adaptive"),
+           "pbf": (["solver=pbf"], "4e-3")}
+
+
+def solver_stable(args, out, solver, dt, t_run, resolution):
+    """A fixed-step dam break that ends without a blow-up, below a runaway speed and within 10% of rest
+    density (the stability map's rule)."""
+    sets = [f"resolution.particles_across={resolution}", "time_step.mode=fixed", f"time_step.dt={dt}"] + SOLVERS[solver][0]
+    rc, _, m, _ = sph_run(args.build, "dam_break.json", t_run, os.path.join(out, "solver_run"), sets)
+    return (rc == 0 and bool(m) and float(m[-1]["v_max"]) < 5.0 * math.sqrt(2 * G * 2 * A) and
+            float(m[-1]["density_error_mean"]) < 0.10)
+
+
+def solvers(args, out):
+    """Largest stable fixed step per solver (bisection in log space between 0.01 and 8 ms, as the stability
+    map), then surge-front error against cost at each solver's own step."""
+    rows = []
+    t_run = 0.05 if args.quick else 0.1
+    for solver in SOLVERS:
+        lo, hi = 1e-5, 8e-3
+        if solver_stable(args, out, solver, hi, t_run, 12):
+            best = hi
+        else:
+            for _ in range(2 if args.quick else 6):
+                mid = math.sqrt(lo * hi)
+                lo, hi = (mid, hi) if solver_stable(args, out, solver, mid, t_run, 12) else (lo, mid)
+            best = lo if lo > 1e-5 or solver_stable(args, out, solver, lo, t_run, 12) else 0.0
+        print(f"  solvers: {solver} largest stable fixed dt {best:.2e} s", flush=True)
+        rows.append({"study": "stability", "solver": solver, "resolution": 12, "dt": best, "steps": 0, "particles": 0,
+                     "stable": True, "wall_per_simulated_second": float("nan"), "error": float("nan"),
+                     "iterations_per_step": float("nan")})
+    resolutions = (10,) if args.quick else (12, 16, 20)
+    scene, t_end, metrics_every, error = CASES["dam_break"]
+    for solver, (sets0, dt) in SOLVERS.items():
+        for n in resolutions:
+            sets = [f"resolution.particles_across={n}"] + sets0
+            sets += ["time_step.mode=adaptive"] if dt == "adaptive" else ["time_step.mode=fixed", f"time_step.dt={dt}"]
+            rc, s, m, wall = sph_run(args.build, scene, t_end, os.path.join(out, "solver_run"), sets, metrics_every=metrics_every)
+            stable = rc == 0 and bool(m)
+            iters = s.get("density_solver_iterations", s.get("constraint_iterations", ""))
+            it = float(re.match(r"mean ([0-9.eE+-]+)", iters).group(1)) if iters else 0.0
+            row = {"study": "accuracy", "solver": solver, "resolution": n, "dt": dt, "steps": int(s.get("steps", 0)),
+                   "particles": int(s.get("particles", 0)), "stable": stable,
+                   "wall_per_simulated_second": wall / float(s["simulated_time"]) if stable else float("nan"),
+                   "error": error(m) if stable else float("nan"), "iterations_per_step": it}
+            result = (f"error {row['error']:.3f}, {row['wall_per_simulated_second']:.1f} s per simulated s, "
+                      f"{row['steps']} steps" if stable else "unstable")
+            print(f"  solvers: {solver} {n} across, dt {dt}: {row['particles']} particles, {result}", flush=True)
+            rows.append(row)
+    write_csv(os.path.join(out, "solvers.csv"), rows)
+    return rows
+
+
 def write_csv(path, rows):
     if not rows:
         return
@@ -200,10 +258,41 @@ def pareto(points):
     return sorted(keep, key=lambda i: points[i][0])
 
 
-def charts(out, stab, acc, bench):
+def solver_chart(plt, out, rows):
+    colours = {"wcsph": "tab:blue", "dfsph": "tab:red", "pbf": "tab:green"}
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    stab = [r for r in rows if r["study"] == "stability"]
+    axes[0].bar([r["solver"].upper() for r in stab], [r["dt"] * 1e3 for r in stab],
+                color=[colours[r["solver"]] for r in stab])
+    axes[0].set_ylabel("largest stable fixed dt [ms]")
+    axes[0].set_title("Dam break (12 across), fixed step")
+    for solver, c in colours.items():
+        pts = [r for r in rows if r["study"] == "accuracy" and r["solver"] == solver and r["stable"]]
+        axes[1].plot([r["wall_per_simulated_second"] for r in pts], [r["error"] for r in pts], "o-", color=c,
+                     label=f"{solver.upper()} (dt {pts[0]['dt'] if pts else '-'})")
+        for r in pts:
+            axes[1].annotate(f"{r['particles'] / 1000:.1f}k", (r["wall_per_simulated_second"], r["error"]), fontsize=7,
+                             xytext=(4, 3), textcoords="offset points")
+        for r in rows:
+            if r["study"] == "accuracy" and r["solver"] == solver and not r["stable"]:
+                axes[1].text(0.01, 0.95 - 0.05 * list(colours).index(solver),
+                             f"{solver.upper()} unstable at {r['resolution']} across", transform=axes[1].transAxes,
+                             fontsize=7, color=c)
+    axes[1].set_xscale("log")
+    axes[1].set_xlabel("wall seconds per simulated second (log)")
+    axes[1].set_ylabel("surge front error (MAE in Z, T <= 3)")
+    axes[1].set_title("Dam break vs Martin & Moyce, per solver")
+    axes[1].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "solvers.png"), dpi=120)
+
+
+def charts(out, stab, acc, bench, solver_rows=()):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    if solver_rows:
+        solver_chart(plt, out, solver_rows)
     if stab:
         fig, ax = plt.subplots(figsize=(9, 3.8))
         combos = sorted({(r["variant"], r["eos"]) for r in stab})
@@ -289,7 +378,7 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "studies"))
     ap.add_argument("--bench", default="", help="sph_bench's bench.csv for the scaling chart")
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--only", choices=["stability", "clustering", "accuracy"], help="run one study only")
+    ap.add_argument("--only", choices=["stability", "clustering", "accuracy", "solvers"], help="run one study only")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     stab, acc = [], []
@@ -302,8 +391,12 @@ def main():
     if args.only in (None, "accuracy"):
         print("[studies] accuracy against cost", flush=True)
         acc = accuracy_cost(args, args.out)
-    charts(args.out, stab, acc, args.bench)
-    print(f"[studies] written: {args.out}/stability_map.csv, clustering.csv, accuracy_cost.csv and the PNG charts")
+    solver_rows = []
+    if args.only in (None, "solvers"):
+        print("[studies] solvers", flush=True)
+        solver_rows = solvers(args, args.out)
+    charts(args.out, stab, acc, args.bench, solver_rows)
+    print(f"[studies] written: {args.out}/stability_map.csv, clustering.csv, accuracy_cost.csv, solvers.csv and the PNG charts")
 
 
 if __name__ == "__main__":

@@ -33,18 +33,10 @@ struct GroupSumFn {
   }
 };
 
-// The levels above: out[g] = in[g w] + ... over the group's entries below n.
-struct GroupSumOfSumsFn {
+// The levels above read the level below: out[g] = in[g w] + ... over the group's entries below n.
+struct LevelOf {
   const double* in;
-  int32_t n;
-  double* out;
-  SPH_HD void operator()(int32_t g) const {
-    const int32_t begin = g * kReduceWidth;
-    const int32_t end = begin + kReduceWidth < n ? begin + kReduceWidth : n;
-    double sum = 0.0;
-    for (int32_t i = begin; i < end; ++i) sum += in[i];
-    out[g] = sum;
-  }
+  SPH_HD double operator()(int32_t i) const { return in[i]; }
 };
 
 // The whole sum of f(0) ... f(n - 1) in the order above, with loop(count, functor) running functor(g) for
@@ -58,7 +50,7 @@ const double* reduce_sum_into(int32_t n, const F& f, double* a, double* b, Loop&
   loop(m, GroupSumFn<F>{f, n, a});
   while (m > 1) {
     const int32_t next = reduce_groups(m);
-    loop(next, GroupSumOfSumsFn{a, m, b});
+    loop(next, GroupSumFn<LevelOf>{LevelOf{a}, m, b});
     double* t = a;
     a = b;
     b = t;
