@@ -1,5 +1,5 @@
 // The execution interface a solver's step is written against (issue 12, item 1). A solver (src/solvers/
-// wcsph.h) is its phases in order, each a loop of a per-particle functor or one of the few operations
+// wcsph.h, dfsph.h, pbf.h) is its phases in order, each a loop of a per-particle functor or one of the few operations
 // below; a back end implements this interface and nothing of the physics or of the order, so a new solver
 // touches no back end. Back ends differ in scheduling only: `cpu` runs the loops serially (the reference),
 // `host` on OpenMP, `cuda` as kernels on one stream (src/cuda/device_launch.h).
@@ -16,11 +16,14 @@
 //   GridView grid();                         the grid of the last build_grid()
 //   void for_each(const F& f);               f(i) for every particle i, in any order or in parallel: f may
 //                                            write only particle i's fields
+//   double sum(int32_t n, const F& f);       f(0) + ... + f(n - 1) in reduction.h's fixed order (the same bits
+//                                            on every back end), read back to the host: on cuda a copy
+//                                            that waits for the enqueued work (the solvers' convergence test)
 //   void build_grid();                       sort by (cell key, id), reorder every array, build the
 //                                            tables (and on the CPU builds the neighbour lists), grid.h
 //   void recycle();                          drop the particles expired() says have left (params.h),
 //                                            keeping the others; the next build_grid() orders them
 //
 // Every back end gives the same bits for the same phases: the functors are the same code, the grid's order
-// is unique, and no loop reduces across particles in an order that depends on scheduling.
+// is unique, and the only reduction across particles, sum(), has a fixed order.
 #pragma once
