@@ -21,7 +21,7 @@ const char* const kProperties[] = {
     "property float x",  "property float y",  "property float z",       "property float vx",
     "property float vy", "property float vz", "property float density", "property float pressure",
     "property uchar fluid", "property int id", "property float ax",     "property float ay",
-    "property float az",  "property float age"};
+    "property float az",  "property float age",     "property float near_pressure"};
 constexpr std::size_t kMaxHeaderBytes = 1 << 20;  // bounds the read of a file that is no frame
 
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {
@@ -137,7 +137,7 @@ void parse_header(const std::vector<std::string>& lines, const std::string& path
     } else if (line.rfind("property ", 0) == 0) {
       if (prop >= std::size(kProperties) || line != kProperties[prop])
         refuse(path, "unexpected \"" + line + "\": sph_run frames have the properties x y z vx vy vz density pressure "
-                     "fluid id ax ay az age (frames of older versions lack ax ay az age and cannot be continued)");
+                     "fluid id ax ay az age near_pressure (frames of older versions lack some and cannot be continued)");
       ++prop;
     } else if (line.rfind("element ", 0) == 0) {
       refuse(path, "unexpected \"" + line + "\": a frame has one element, vertex");
@@ -145,7 +145,8 @@ void parse_header(const std::vector<std::string>& lines, const std::string& path
   }
   if (prop != std::size(kProperties))
     refuse(path, "only " + std::to_string(prop) + " of the " + std::to_string(std::size(kProperties)) +
-                     " properties x y z vx vy vz density pressure fluid id ax ay az age (frames of older versions lack ax ay az age and cannot be continued)");
+                     " properties x y z vx vy vz density pressure fluid id ax ay az age near_pressure (frames of older versions lack some and "
+                     "cannot be continued)");
   const std::pair<bool, const char*> required[] = {
       {have_time, "comment sph frame, time T s"}, {have_scene, "comment scene NAME"}, {have_step, "comment step N"},
       {have_frame, "comment frame I"},            {have_next, "comment next_id K"},   {have_spacing, "comment spacing D"},
@@ -167,6 +168,7 @@ void check_particles(const Frame& f, const std::string& path) {
                       : !finite(ps.acc[i])                                ? "a non-finite acceleration"
                       : !(std::isfinite(ps.density[i]) && ps.density[i] > 0.0f) ? "a density that is not positive and finite"
                       : !std::isfinite(ps.pressure[i])                    ? "a non-finite pressure"
+                      : !std::isfinite(ps.near_pressure[i])               ? "a non-finite near_pressure"
                       : !std::isfinite(ps.age[i])                         ? "a non-finite age"
                       : ps.id[i] < 0 || ps.id[i] >= f.info.next_id        ? "an id outside [0, next_id)"
                                                                           : nullptr;
@@ -206,7 +208,7 @@ Frame read_ply_frame(const std::string& path, double max_particles) {
   ps.resize(n);
   const char* r = buf.data();
   for (std::size_t i = 0; i < n; ++i) {  // the layout of frame_writer.cpp
-    float a[8], b[4];
+    float a[8], b[5];
     std::memcpy(a, r, sizeof a);
     r += sizeof a;
     ps.fluid[i] = uint8_t(*r++);
@@ -220,6 +222,7 @@ Frame read_ply_frame(const std::string& path, double max_particles) {
     ps.pressure[i] = a[7];
     ps.acc[i] = Vec3{b[0], b[1], b[2]};
     ps.age[i] = b[3];
+    ps.near_pressure[i] = b[4];
   }
   check_particles(f, path);
   return f;

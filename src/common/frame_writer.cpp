@@ -42,7 +42,8 @@ std::string header(const ParticleState& ps, const FrameInfo& info) {
   h += "property float x\nproperty float y\nproperty float z\n"
        "property float vx\nproperty float vy\nproperty float vz\n"
        "property float density\nproperty float pressure\nproperty uchar fluid\nproperty int id\n"
-       "property float ax\nproperty float ay\nproperty float az\nproperty float age\nend_header\n";
+       "property float ax\nproperty float ay\nproperty float az\nproperty float age\nproperty float near_pressure\n"
+       "end_header\n";
   return h;
 }
 
@@ -57,7 +58,7 @@ std::vector<char> records(const ParticleState& ps) {
     *w++ = char(ps.fluid[i]);
     std::memcpy(w, &ps.id[i], 4);
     w += 4;
-    const float g[4] = {ps.acc[i].x, ps.acc[i].y, ps.acc[i].z, ps.age[i]};
+    const float g[5] = {ps.acc[i].x, ps.acc[i].y, ps.acc[i].z, ps.age[i], ps.near_pressure[i]};
     std::memcpy(w, g, sizeof g);
     w += sizeof g;
   }

@@ -11,7 +11,8 @@
 //   comment jet j travelled X          one line per jet, X %.17g [m] (its emission accumulator)
 //   element vertex N
 //   properties, one record per particle: float x y z vx vy vz density pressure, uchar fluid, int id,
-//   float ax ay az age
+//   float ax ay az age near_pressure   (near_pressure: WCSPH's near pressure, or DFSPH's divergence pressure
+//                                       that its next warm start reads, particle_view.h)
 //   end_header
 #pragma once
 
@@ -23,7 +24,7 @@
 namespace sph {
 
 // Bytes of one particle record (the properties above).
-constexpr std::size_t kFrameRecordBytes = 8 * 4 + 1 + 4 + 4 * 4;
+constexpr std::size_t kFrameRecordBytes = 8 * 4 + 1 + 4 + 5 * 4;
 
 // Writes path atomically: the frame goes to path + ".tmp", every write is checked, and only a complete
 // file is renamed to path. Throws std::runtime_error naming the file and the reason; then no partial
