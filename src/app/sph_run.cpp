@@ -159,8 +159,11 @@ void print_solver_summary(const Simulation& sim) {
   if (dfsph)
     std::cout << "divergence_solver_iterations: mean " << double(t.divergence_iterations) / steps << ", max "
               << t.max_divergence_iterations << "\n";
+  // Steps whose density (PBF: constraint) solve stopped at its cap above tolerance; DFSPH's divergence solve
+  // on a line of its own.
   std::cout << "solver_density_error_max: " << t.max_density_error << "\n"
-            << "solver_capped_steps: " << t.density_capped_steps + t.divergence_capped_steps << "\n";
+            << "solver_capped_steps: " << t.density_capped_steps << "\n";
+  if (dfsph) std::cout << "divergence_capped_steps: " << t.divergence_capped_steps << "\n";
   if (t.density_capped_steps > 0)
     std::cerr << "warning: the " << (dfsph ? "density solver" : "constraint solve") << " did not converge in "
               << t.density_capped_steps << " of " << t.steps << " steps: it stopped at "

@@ -311,7 +311,7 @@ void Simulation::blow_up(const std::string& what, int32_t particle, double dt) c
        << "(last solve: " << solver_stats_.density_iterations << " iterations, mean compression "
        << 100.0 * solver_stats_.density_error << "%). "
        << (dfsph ? "Raise dfsph.max_iterations or lower time_step.max or time_step.cfl_velocity."
-                 : "Raise pbf.iterations, set pbf.density_tolerance, or lower the time step (time_step.dt).");
+                 : "Raise pbf.iterations or lower the time step (time_step.dt).");
     throw BlowUp(os.str());
   }
   const double c0 = setup_.max_speed_of_sound;
