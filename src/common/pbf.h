@@ -43,32 +43,45 @@ SPH_HD inline float pbf_density(const SimConstants& c, const GridView& grid, con
 SPH_HD inline float pbf_constraint(float density, float rest_density) { return density / rest_density - 1.0f; }
 
 // [MM13] section 3 (eqs. 8 to 11): lambda_i = -C_i / (sum_k |grad_k C_i|^2 + epsilon), with
-// grad_j C_i = -(m_j / rho0) grad W_ij (k = j) and grad_i C_i = (1 / rho0) sum_j m_j grad W_ij (k = i).
-// C_i from p.density[i] (max(C_i, 0) with clamp_expansion). Positive under expansion (C < 0): lambda pulls
-// neighbours in; negative under compression. Returns 0 where the denominator is not positive (an isolated
-// particle with epsilon = 0). [m^2]
-SPH_HD inline float pbf_lambda(const SimConstants& c, const GridView& grid, const ParticleView& p,
-                               const PbfConstants& params, int32_t i) {
+// grad_j C_i = -(m_j / rho0) grad W_ij (k = j) and grad_i C_i = (1 / rho0) sum_j m_j grad W_ij (k = i), and
+// the density rho_i (pbf_density's sum, the same bits) that C_i = rho_i / rho0 - 1 reads, both from one pass
+// over the neighbours: the density into `density`, lambda returned. max(C_i, 0) with clamp_expansion.
+// Positive under expansion (C < 0): lambda pulls neighbours in; negative under compression. Returns 0 where
+// the denominator is not positive (an isolated particle with epsilon = 0). Wall ghosts are solid: they add to
+// the density and move i's constraint (grad_i C_i) but do not move themselves. [m^2]
+SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                       const PbfConstants& params, int32_t i, float& density) {
   const KernelCoeffs& k = c.kernel;
   const float rest_density = c.fluids[p.fluid[i]].rest_density;
+  float rho = 0.0f;
   Vec3 grad_i{0.0f, 0.0f, 0.0f};  // grad_i C_i [1/m]
   float sum_grad2 = 0.0f;         // sum_j |grad_j C_i|^2 [1/m^2]
   for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    const float mj = c.fluids[p.fluid[j]].mass;
+    rho += mj * poly6(k, r2);
     if (r2 <= 0.0f) return;
-    const Vec3 g = (c.fluids[p.fluid[j]].mass / rest_density * spiky_grad_fac(k, sqrtf(r2))) * xij;
+    const Vec3 g = (mj / rest_density * spiky_grad_fac(k, sqrtf(r2))) * xij;
     grad_i += g;
     sum_grad2 += length2(g);
   });
-  // Wall ghosts are solid: they move i's constraint (grad_i C_i) but do not move themselves.
   const Vec3 xi = p.pos[i];
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+    rho += p.pos_mass[j].w * poly6(k, r2);
     if (r2 > 0.0f) grad_i += (p.pos_mass[j].w / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
+  density = rho;
   const float denominator = sum_grad2 + length2(grad_i) + params.relaxation / k.h2;
   if (!(denominator > 0.0f)) return 0.0f;
-  const float constraint = pbf_constraint(p.density[i], rest_density);
+  const float constraint = pbf_constraint(rho, rest_density);
   return -(params.clamp_expansion && constraint < 0.0f ? 0.0f : constraint) / denominator;
+}
+
+// lambda_i alone (pbf_density_lambda). [m^2]
+SPH_HD inline float pbf_lambda(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                               const PbfConstants& params, int32_t i) {
+  float density;
+  return pbf_density_lambda(c, grid, p, params, i, density);
 }
 
 // [MM13] eq. 13: s_corr = -k (W(r) / W(dq))^n, W = Poly6, r^2 = |x_ij|^2. Dimensionless as in the paper;

@@ -67,13 +67,19 @@ struct DensityFn {
   }
 };
 
+// Density at x*, the compression for the convergence test, and lambda, from one pass (pbf_density_lambda).
 template <class C>
-struct LambdaFn {
+struct DensityLambdaFn {
   C c;
   GridView g;
   ParticleView p;
   SPH_KERNEL_FN void operator()(int32_t i) const {
-    p.lambda[i] = p.age[i] < 0.0f ? 0.0f : pbf_lambda(*c, g, p, (*c).pbf, i);
+    float rho;
+    const float lambda = pbf_density_lambda(*c, g, p, (*c).pbf, i, rho);
+    const float constraint = pbf_constraint(rho, (*c).fluids[p.fluid[i]].rest_density);
+    p.density[i] = rho;
+    p.solver_error[i] = p.age[i] < 0.0f || constraint < 0.0f ? 0.0f : constraint;
+    p.lambda[i] = p.age[i] < 0.0f ? 0.0f : lambda;
   }
 };
 
@@ -159,7 +165,8 @@ GridView searched_grid(Exec& x) {
   return g;
 }
 
-// The constraint iterations: density and error, then (unless done) lambda, Delta p and its application.
+// The constraint iterations: density, error and lambda in one pass, then (unless done) Delta p and its
+// application; the last pass computes the density only.
 // Returns the iterations made; error: the mean compression at the end; capped: a tolerance was set and not met.
 template <class Exec>
 int32_t solve(Exec& x, float dt, double& error, bool& capped) {
@@ -170,13 +177,14 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   const int32_t n = p.n;
   int32_t it = 0;
   for (;;) {
-    x.for_each(DensityFn<C>{x.constants(), g, p});
+    // The last pass needs no lambda: then the density alone (the same bits).
     const bool last = it == s.iterations;
+    if (last) x.for_each(DensityFn<C>{x.constants(), g, p});
+    else x.for_each(DensityLambdaFn<C>{x.constants(), g, p});
     if (last || s.density_tolerance > 0.0f) {
       error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
       if (last || error <= double(s.density_tolerance)) break;
     }
-    x.for_each(LambdaFn<C>{x.constants(), g, p});
     x.for_each(CorrectionFn<C>{x.constants(), g, p});
     x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt});
     ++it;
