@@ -21,17 +21,27 @@
 
 namespace sph {
 
-// Slots of a particle's list: twice the neighbours a particle of the densest fluid has at rest
-// (4/3 pi h^3 rho0 / m), at least 32, a multiple of 4; 0 (no lists: search in every loop) beyond 256,
-// where the lists' memory would outweigh the search they save.
-// PBF gets none: its iterations move the particles after the grid phase, so a list made there no longer holds
-// the particles within h, and every loop must search (as on a GPU) for the back ends to agree.
+// The radius the lists (and every loop that reads them) select neighbours by, as a multiple of h: 1, but
+// kPbfListReach for PBF, whose iterations move the particles after the grid phase. PBF's loops select their
+// pairs by this radius at the grid phase's positions (pos_mass, which PBF leaves as the grid wrote them) and
+// then keep those within h at the current positions (src/common/pbf.h, for_each_pbf_pair): the same pairs on
+// every back end, lists or search, and the margin of 0.2 h keeps the pairs that come within h while the
+// iterations move them (with a margin of 0, pairs were missed and a resting column blew up in 0.85 s).
+constexpr float kPbfListReach = 1.2f;
+SPH_HD inline float neighbour_reach(const SimConstants& c) { return c.solver == Solver::Pbf ? kPbfListReach : 1.0f; }
+SPH_HD inline float neighbour_radius2(const SimConstants& c) {
+  const float reach = neighbour_reach(c);
+  return reach * reach * c.kernel.h2;
+}
+
+// Slots of a particle's list: twice the neighbours a particle of the densest fluid has at rest within the
+// list radius (4/3 pi (reach h)^3 rho0 / m), at least 32, a multiple of 4; 0 (no lists: search in every loop)
+// beyond 256, where the lists' memory would outweigh the search they save.
 inline int32_t neighbour_list_capacity(const SimConstants& c) {
-  if (c.solver == Solver::Pbf) return 0;
   double expected = 0.0;
   for (int32_t f = 0; f < c.num_fluids; ++f) {
-    const double h = c.kernel.h;
-    const double n = 4.0 / 3.0 * kPiDouble * h * h * h * c.fluids[f].rest_density / c.fluids[f].mass;
+    const double r = double(c.kernel.h) * neighbour_reach(c);
+    const double n = 4.0 / 3.0 * kPiDouble * r * r * r * c.fluids[f].rest_density / c.fluids[f].mass;
     expected = n > expected ? n : expected;
   }
   const double slots = 2.0 * expected < 32.0 ? 32.0 : 2.0 * expected;

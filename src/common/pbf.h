@@ -19,23 +19,57 @@
 #include "grid.h"
 #include "kernels.h"
 #include "mirror_walls.h"
+#include "neighbour_list.h"
 #include "params.h"
 
 namespace sph {
 
 
+// The neighbours as [MM13] finds them, once a step (algorithm 1, line 6): the pairs the grid phase selected
+// by the list radius (neighbour_list.h, neighbour_radius2: 1.2 h) at its positions, pos_mass, which the
+// solver leaves as the grid phase wrote them; in the search's order, the same on every back end (the CPU
+// builds read the lists). Each is evaluated at the current positions p.pos, while within h:
+// f(j, x_i - x_j, r2) with r2 < h^2.
+template <class F>
+SPH_HD inline void for_each_pbf_pair(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i, F&& f) {
+  const Vec3 xi = p.pos[i];
+  const float h2 = c.kernel.h2;
+  for_each_neighbour(grid, p.pos_mass, i, neighbour_radius2(c), [&](int32_t j, Vec3, float) {
+    const Vec3 xij = xi - p.pos[j];
+    const float r2 = length2(xij);
+    if (r2 < h2) f(j, xij, r2);
+  });
+}
+
+// The wall ghosts (mirror_walls.h) of those pairs' neighbours at their current positions:
+// f(j, image, x_ghost, r2) for each ghost within h of x_i.
+template <class F>
+SPH_HD inline void for_each_pbf_ghost(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                      const NearWalls& walls, int32_t i, F&& f) {
+  if (walls.count == 0) return;
+  const Vec3 xi = p.pos[i];
+  const float h2 = c.kernel.h2;
+  for_each_neighbour(grid, p.pos_mass, i, neighbour_radius2(c), [&](int32_t j, Vec3, float) {
+    for (int32_t image = 1; image < image_count(walls); ++image) {
+      const Vec3 xg = mirror_position(walls, image, p.pos[j]);
+      const float r2 = length2(xi - xg);
+      if (r2 < h2) f(j, image, xg, r2);
+    }
+  });
+}
+
 // rho_i = sum_j m_j W_poly6(x_i - x_j), the particle itself included, at the positions p.pos (the predicted
 // x* while the solver iterates): the density the constraint reads ([MM13] eq. 2). With mirror walls the
-// neighbours' wall ghosts (mirror_walls.h; positions from pos_mass, which the solver keeps packed) add their
+// neighbours' wall ghosts (mirror_walls.h, for_each_pbf_ghost) add their
 // mass, so a particle at a wall is not read as under-dense. [kg/m^3]
 SPH_HD inline float pbf_density(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   float rho = 0.0f;
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3, float r2) {
+  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3, float r2) {
     rho += c.fluids[p.fluid[j]].mass * poly6(k, r2);
   });
   const NearWalls walls = c.mirror_walls ? near_walls(c, p.pos[i]) : NearWalls{};
-  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) { rho += p.pos_mass[j].w * poly6(k, r2); });
+  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) { rho += p.pos_mass[j].w * poly6(k, r2); });
   return rho;
 }
 
@@ -56,7 +90,7 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
   float rho = 0.0f;
   Vec3 grad_i{0.0f, 0.0f, 0.0f};  // grad_i C_i [1/m]
   float sum_grad2 = 0.0f;         // sum_j |grad_j C_i|^2 [1/m^2]
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
     const float mj = c.fluids[p.fluid[j]].mass;
     rho += mj * poly6(k, r2);
     if (r2 <= 0.0f) return;
@@ -66,7 +100,7 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
   });
   const Vec3 xi = p.pos[i];
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
-  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     rho += p.pos_mass[j].w * poly6(k, r2);
     if (r2 > 0.0f) grad_i += (p.pos_mass[j].w / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
@@ -102,7 +136,7 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
   const KernelCoeffs& k = c.kernel;
   const float li = lambda[i];
   Vec3 dp{0.0f, 0.0f, 0.0f};
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
     const float s = li + lambda[j] + pbf_scorr(k, params, r2) * k.h2;
     dp += (c.fluids[p.fluid[j]].mass * s * spiky_grad_fac(k, sqrtf(r2))) * xij;
@@ -110,7 +144,7 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
   // Wall ghosts push with the particle's own lambda (and s_corr): the solid has no constraint of its own.
   const Vec3 xi = p.pos[i];
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
-  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     if (r2 <= 0.0f) return;
     const float s = li + pbf_scorr(k, params, r2) * k.h2;
     dp += (p.pos_mass[j].w * s * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
@@ -127,7 +161,7 @@ SPH_HD inline Vec3 pbf_xsph(const SimConstants& c, const GridView& grid, const P
   const Vec3 vi = vel[i];
   const float rho_i = p.density[i];
   Vec3 dv{0.0f, 0.0f, 0.0f};
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3, float r2) {
+  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3, float r2) {
     if (r2 <= 0.0f) return;
     dv += xsph_pair_weight(k, 1.0f, c.fluids[p.fluid[j]].mass, r2, rho_i, p.density[j]) * (vel[j] - vi);
   });
@@ -142,7 +176,7 @@ SPH_HD inline Vec3 pbf_vorticity(const SimConstants& c, const GridView& grid, co
   const KernelCoeffs& k = c.kernel;
   const Vec3 vi = vel[i];
   Vec3 omega{0.0f, 0.0f, 0.0f};
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
     const Vec3 grad_j = (-c.fluids[p.fluid[j]].mass / p.density[j] * spiky_grad_fac(k, sqrtf(r2))) * xij;
     omega += cross(vel[j] - vi, grad_j);
@@ -161,7 +195,7 @@ SPH_HD inline Vec3 pbf_vorticity_confinement(const SimConstants& c, const GridVi
   const KernelCoeffs& k = c.kernel;
   const float wi = length(omega[i]);
   Vec3 eta{0.0f, 0.0f, 0.0f};
-  for_each_neighbour(grid, p.pos, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
     eta += (c.fluids[p.fluid[j]].mass / p.density[j] * (length(omega[j]) - wi) * spiky_grad_fac(k, sqrtf(r2))) *
            xij;

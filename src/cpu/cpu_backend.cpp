@@ -153,10 +153,10 @@ void CpuBackend::build_grid() {
   for (int32_t b = 0; b < blocks; ++b)
     for (int32_t row = 0; row < kRows; ++row) {
       if (branch_free)
-        neighbour_rows::list_row_neighbours<true>(search, s_.pos.data(), c_.kernel.h2, b, row, neighbour_list_.data(),
+        neighbour_rows::list_row_neighbours<true>(search, s_.pos.data(), neighbour_radius2(c_), b, row, neighbour_list_.data(),
                                                   neighbour_count_.data(), list_capacity_);
       else
-        neighbour_rows::list_row_neighbours<false>(search, s_.pos.data(), c_.kernel.h2, b, row, neighbour_list_.data(),
+        neighbour_rows::list_row_neighbours<false>(search, s_.pos.data(), neighbour_radius2(c_), b, row, neighbour_list_.data(),
                                                    neighbour_count_.data(), list_capacity_);
     }
   list_choice_.record(branch_free, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),

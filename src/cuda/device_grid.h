@@ -169,7 +169,7 @@ class DeviceGrid {
     neighbour_count_.resize(std::size_t(n));
     GridView search = view(g);
     search.neighbour_list = nullptr;
-    const float h2 = c.kernel.h2;
+    const float h2 = neighbour_radius2(c);  // h^2, or PBF's wider list radius (neighbour_list.h)
     const auto t0 = std::chrono::steady_clock::now();
     const bool branch_free = list_choice_.branch_free();
     const int32_t block_rows = *block_count * kBlockY * kBlockZ;  // host memory in this build

@@ -10,8 +10,8 @@
 //   correct:          v = (x* - x) / dt
 //   forces:           vorticity confinement (eqs. 15, 16) and XSPH (eq. 17) on v
 //   recycle
-// The old position x is pos_start (the shapes test the segment x -> x*). The neighbour loops search the grid's
-// cells with the current positions (no neighbour lists: neighbour_list.h), as a GPU does.
+// The old position x is pos_start (the shapes test the segment x -> x*). The neighbours are the pairs the grid
+// phase selected at x*, evaluated at the current positions (for_each_pbf_pair, src/common/pbf.h).
 // Each iteration is Jacobi: every lambda from the same positions, then every Delta p from the same lambdas.
 // With pbf.density_tolerance > 0 the iterations stop early once the mean compression max(C, 0) is within it
 // (one reduction a check, deterministic: reduction.h); a step that uses every iteration above it is flagged.
@@ -101,11 +101,9 @@ struct ApplyCorrectionFn {
   ParticleView p;
   float dt;
   SPH_KERNEL_FN void operator()(int32_t i) const {
-    if (p.age[i] >= 0.0f) {
-      p.pos[i] += p.delta_pos[i];
-      boundaries_of(*c, p, i, dt);
-    }
-    pack_position(*c, p, i);  // the wall ghosts' positions (mirror_walls.h reads pos_mass)
+    if (p.age[i] < 0.0f) return;
+    p.pos[i] += p.delta_pos[i];
+    boundaries_of(*c, p, i, dt);
   }
 };
 
@@ -157,14 +155,6 @@ struct SolverErrorOf {
   SPH_HD float operator()(int32_t i) const { return error[i]; }
 };
 
-// The grid without neighbour lists: every loop searches with the current positions (see above).
-template <class Exec>
-GridView searched_grid(Exec& x) {
-  GridView g = x.grid();
-  g.neighbour_list = nullptr;
-  return g;
-}
-
 // The constraint iterations: density, error and lambda in one pass, then (unless done) Delta p and its
 // application; the last pass computes the density only.
 // Returns the iterations made; error: the mean compression at the end; capped: a tolerance was set and not met.
@@ -173,7 +163,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   using C = typename Exec::Constants;
   const PbfConstants& s = x.host_constants().pbf;
   const ParticleView p = x.particles();
-  const GridView g = searched_grid(x);
+  const GridView g = x.grid();
   const int32_t n = p.n;
   int32_t it = 0;
   for (;;) {
@@ -207,9 +197,9 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
       return;
     case Phase::Correct: x.for_each(VelocityFn{x.particles(), dt}); return;
     case Phase::Forces:
-      if (s.vorticity_epsilon > 0.0f) x.for_each(VorticityFn<C>{x.constants(), searched_grid(x), x.particles()});
+      if (s.vorticity_epsilon > 0.0f) x.for_each(VorticityFn<C>{x.constants(), x.grid(), x.particles()});
       if (s.vorticity_epsilon > 0.0f || s.xsph_c > 0.0f) {
-        x.for_each(VelocityCorrectionFn<C>{x.constants(), searched_grid(x), x.particles()});
+        x.for_each(VelocityCorrectionFn<C>{x.constants(), x.grid(), x.particles()});
         x.for_each(ApplyVelocityFn{x.particles(), dt});
       }
       return;
@@ -223,7 +213,7 @@ template <class Exec>
 void initialise(Exec& x) {
   using C = typename Exec::Constants;
   x.build_grid();
-  x.for_each(DensityFn<C>{x.constants(), searched_grid(x), x.particles()});
+  x.for_each(DensityFn<C>{x.constants(), x.grid(), x.particles()});
 }
 
 }  // namespace pbf
