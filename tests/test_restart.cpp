@@ -367,7 +367,7 @@ TEST_CASE("frames that cannot be trusted are refused with a message naming the f
   }
 }
 
-TEST_CASE("a frame continues only the scene and resolution that wrote it", "[restart]") {
+TEST_CASE("a frame continues only the scene, resolution and solver that wrote it", "[restart]") {
   const Scratch scratch("mismatch");
   const fs::path& dir = scratch.dir;
   const sph::Scene scene = scene_file("dam_break.json", {"resolution.particles_across=8"});
@@ -389,6 +389,8 @@ TEST_CASE("a frame continues only the scene and resolution that wrote it", "[res
   };
   refused(scene_file("dam_break.json", {"resolution.particles_across=9"}), "spacing");
   refused(scene_file("hydrostatic_tank.json", {}), "hydrostatic");
+  // The solvers keep different state in the same fields: the frame names its solver.
+  refused(scene_file("dam_break.json", {"resolution.particles_across=8", "solver=dfsph"}), "solver \"wcsph\"");
 }
 
 TEST_CASE("a frame write that fails leaves no partial file", "[restart]") {

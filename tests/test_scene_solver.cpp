@@ -119,7 +119,7 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
     CHECK(b.xsph_c == Approx(0.02f));
     CHECK(b.vorticity_epsilon == Approx(0.5f));
     // The closed lower ends are allowed: no tolerance (always all iterations), no s_corr, no XSPH.
-    const sph::Scene z = parse_solver("pbf", R"("pbf": { "density_tolerance": 0, "relaxation": 0, "scorr_k": 0,
+    const sph::Scene z = parse_solver("pbf", R"("pbf": { "density_tolerance": 0, "relaxation": 0.001, "scorr_k": 0,
         "xsph": 0, "vorticity_epsilon": 0 })");
     CHECK(z.pbf.density_tolerance == 0.0f);
     CHECK(z.pbf.scorr_k == 0.0f);
@@ -158,7 +158,7 @@ TEST_CASE("loader: scene solver values out of range are refused with the key pat
     const std::vector<BadValue> bad = {
         {"iterations", "0", "allowed [1, 1000]"},           {"iterations", "1001", "allowed [1, 1000]"},
         {"density_tolerance", "-0.01", "allowed [0, 0.1]"}, {"density_tolerance", "0.2", "allowed [0, 0.1]"},
-        {"relaxation", "-1", "allowed [0, 100]"},           {"relaxation", "1000", "allowed [0, 100]"},
+        {"relaxation", "0", "allowed (0, 100]"},            {"relaxation", "1000", "allowed (0, 100]"},
         {"scorr_k", "-0.1", "allowed [0, 10]"},             {"scorr_k", "11", "allowed [0, 10]"},
         {"scorr_n", "0", "allowed [1, 16]"},                {"scorr_n", "17", "allowed [1, 16]"},
         {"scorr_n", "4.5", "expected a whole number"},      {"scorr_dq", "0", "allowed (0, 1)"},

@@ -11,6 +11,8 @@ namespace sph {
 
 struct FrameInfo {
   std::string scene;                // scene name, so a restart with another scene is refused
+  std::string solver;               // "wcsph", "dfsph" or "pbf" (solver_name), so a restart with another is
+                                    // refused; empty: not recorded (an initial_state frame may come from any)
   double time = 0.0;                // simulated time [s], written with 17 significant digits (exact)
   long step = 0;                    // steps taken
   int frame_index = 0;              // NNNNN of frame_NNNNN.ply; a continued run numbers from index + 1

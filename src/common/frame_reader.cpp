@@ -92,6 +92,8 @@ void parse_header(const std::vector<std::string>& lines, const std::string& path
     } else if (after("comment scene ", v)) {
       info.scene = v;
       have_scene = true;
+    } else if (after("comment solver ", v)) {
+      info.solver = v;
     } else if (after("comment step ", v)) {
       info.step = parse_long(path, "comment step", v, 0, 1L << 62);
       have_step = true;

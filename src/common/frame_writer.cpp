@@ -24,6 +24,7 @@ std::string header(const ParticleState& ps, const FrameInfo& info) {
   std::snprintf(line, sizeof line, "comment sph frame, time %.17g s\n", info.time);
   h += line;
   h += "comment scene " + one_line(info.scene) + "\n";
+  if (!info.solver.empty()) h += "comment solver " + one_line(info.solver) + "\n";
   std::snprintf(line, sizeof line, "comment step %ld\ncomment frame %d\ncomment next_id %d\n", info.step,
                 info.frame_index, int(info.next_id));
   h += line;

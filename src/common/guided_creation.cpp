@@ -42,6 +42,31 @@ double cohesion_from_surface_tension(double sigma, double mass, double rest_dens
 
 namespace {
 
+// What the chosen solver does not read, said once at set-up ("setup: ..." lines of sph_run) rather than
+// silently: DFSPH and PBF integrate their own way (no integrator), and PBF has no laminar or artificial
+// viscosity, surface tension or near pressure (XSPH and its position constraint stand in for them).
+void report_ignored_settings(const Scene& scene, std::vector<std::string>& report) {
+  if (scene.solver == Solver::Wcsph) return;
+  const std::string name = solver_name(scene.solver);
+  if (scene.integrator != Integrator::ModifiedVelocityVerlet)
+    report.push_back("note: solver \"" + name + "\" ignores integrator = \"" + integrator_name(scene.integrator) +
+                     "\" (it integrates its own way)");
+  if (scene.solver != Solver::Pbf) return;
+  for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
+    const FluidSpec& f = scene.fluids[i];
+    std::string ignored;
+    const auto add = [&](bool set, const char* key) {
+      if (set) ignored += (ignored.empty() ? "" : ", ") + std::string("fluids.") + std::to_string(i) + "." + key;
+    };
+    add(f.surface_tension > 0.0, "surface_tension");
+    add(f.near_stiffness > 0.0, "near_stiffness");
+    add(f.artificial_viscosity > 0.0 && scene.viscosity == ViscosityModel::Artificial, "artificial_viscosity");
+    add(f.viscosity > 1e-3 && scene.viscosity != ViscosityModel::Artificial, "viscosity");
+    if (!ignored.empty())
+      report.push_back("note: solver \"pbf\" ignores " + ignored + "; its viscosity is XSPH (pbf.xsph)");
+  }
+}
+
 // A time step the incompressible solvers cannot take (time_step.h, incompressible_step_bound): the fixed dt,
 // or the adaptive step's max, above sqrt(d / |g|).
 void check_incompressible_step(const Scene& scene, double spacing) {
@@ -216,6 +241,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing);
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
   check_incompressible_step(scene, s.spacing);
+  report_ignored_settings(scene, s.report);
 
   SimConstants& c = s.constants;
   c.kernel = make_kernel_coeffs(s.h);

@@ -423,7 +423,9 @@ void read_solver(ObjectReader& r, Scene& s) {
     PbfConstants& b = s.pbf;
     b.iterations = int32_t(pr.integer("iterations", b.iterations, 1, 1000));
     b.density_tolerance = float(pr.number("density_tolerance", b.density_tolerance, 0.0, 0.1));
-    b.relaxation = float(pr.number("relaxation", b.relaxation, 0.0, 100.0));
+    // epsilon > 0: with none, a particle with few neighbours gets an unbounded lambda (a resting column blew up
+    // within 0.2 s, measured).
+    b.relaxation = float(pr.number("relaxation", b.relaxation, 0.0, 100.0, true));
     b.scorr_k = float(pr.number("scorr_k", b.scorr_k, 0.0, 10.0));
     b.scorr_n = int32_t(pr.integer("scorr_n", b.scorr_n, 1, 16));
     // dq / h is open at both ends, which number() does not print: checked here, in the stored precision

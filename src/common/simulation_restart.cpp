@@ -19,6 +19,10 @@ void Simulation::continue_from(const Frame& frame) {
   if (info.scene != scene_.name)
     refuse("it was written by the scene \"" + info.scene + "\", not \"" + scene_.name +
            "\" (to start another scene from a frame, use the scene key initial_state)");
+  // The solvers keep different state in the same fields (DFSPH's warm start in pressure and near_pressure).
+  if (!info.solver.empty() && info.solver != solver_name(scene_.solver))
+    refuse("it was written by solver \"" + info.solver + "\", and this run's is \"" + solver_name(scene_.solver) +
+           "\"; continue with --set solver=" + info.solver);
   if (info.spacing != setup_.spacing) {
     std::ostringstream os;
     os.precision(17);
@@ -48,6 +52,7 @@ void Simulation::continue_from(const Frame& frame) {
 FrameInfo Simulation::frame_info(int frame_index) const {
   FrameInfo info;
   info.scene = scene_.name;
+  info.solver = solver_name(scene_.solver);
   info.time = time_;
   info.step = steps_;
   info.frame_index = frame_index;
