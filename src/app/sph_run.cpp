@@ -377,9 +377,12 @@ int main(int argc, char** argv) {
   CLI::App app{
       "sph_run: run an SPH scene headless and record what happens.\n\n"
       "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, potential_energy, energy_budget, density_error_mean,\n"
-      "density_error_max, v_max, front_x, top_y, height_at_x0, particles, outside_domain, wall_ms; flushed at least once per\n"
-      "second) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends with a\n"
-      "summary: particles, steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by phase).\n"
+      "density_error_max, v_max, front_x, top_y, height_at_x0, particles, outside_domain, wall_ms, and the iterative\n"
+      "solvers' solver_iterations, solver_density_error, divergence_iterations, divergence_error; flushed at least\n"
+      "once per second) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends\n"
+      "with a summary: particles, steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by\n"
+      "phase), the solver and, for DFSPH and PBF, iterations per step and steps that reached the iteration cap.\n"
+      "The pressure solver is the scene's \"solver\": wcsph (default), dfsph or pbf (--set solver=dfsph).\n"
       "SIGINT or SIGTERM stops the run after the current step; the output is flushed and the summary printed.\n"
       "Exit status: 0 done, 1 bad input (scene or options), 3 the simulation became unstable (or its state is\n"
       "not finite), 4 an output could not be written, 130 stopped by SIGINT, 143 stopped by SIGTERM."};

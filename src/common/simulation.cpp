@@ -310,7 +310,10 @@ void Simulation::blow_up(const std::string& what, int32_t particle, double dt) c
     os << " Likely cause: the " << solver_name(scene_.solver) << " pressure solve did not hold the fluid at this step "
        << "(last solve: " << solver_stats_.density_iterations << " iterations, mean compression "
        << 100.0 * solver_stats_.density_error << "%). "
-       << (dfsph ? "Raise dfsph.max_iterations or lower time_step.max or time_step.cfl_velocity."
+       << (dfsph ? (scene_.time_step.mode == TimeStepMode::Fixed
+                        ? "Raise dfsph.max_iterations or lower the time step (time_step.dt), or let DFSPH choose it "
+                          "(time_step.mode = \"adaptive\")."
+                        : "Raise dfsph.max_iterations or lower time_step.max or time_step.cfl_velocity.")
                  : "Raise pbf.iterations or lower the time step (time_step.dt).");
     throw BlowUp(os.str());
   }
