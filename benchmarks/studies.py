@@ -188,7 +188,7 @@ def accuracy_cost(args, out):
 # Each solver as a user would run it: its scene keys and its own time step ("adaptive": the scene's adaptive
 # step, the CFL step for DFSPH; a number: that fixed step).
 SOLVERS = {"wcsph": ([], "adaptive"), "dfsph": (["solver=dfsph"], "adaptive"),
-           "pbf": (["solver=pbf"], "4e-3")}
+           "pbf": (["solver=pbf"], "4e-3"), "pbf8": (["solver=pbf", "pbf.iterations=8"], "4e-3")}
 
 
 def solver_stable(args, out, solver, dt, t_run, resolution):
@@ -259,24 +259,28 @@ def pareto(points):
 
 
 def solver_chart(plt, out, rows):
-    colours = {"wcsph": "tab:blue", "dfsph": "tab:red", "pbf": "tab:green"}
+    def label(solver):
+        return "PBF, 8 it." if solver == "pbf8" else solver.upper() + (", 4 it." if solver == "pbf" else "")
+
+    colours = {"wcsph": "tab:blue", "dfsph": "tab:red", "pbf": "tab:green", "pbf8": "tab:olive"}
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     stab = [r for r in rows if r["study"] == "stability"]
-    axes[0].bar([r["solver"].upper() for r in stab], [r["dt"] * 1e3 for r in stab],
+    axes[0].bar([label(r["solver"]) for r in stab], [r["dt"] * 1e3 for r in stab],
                 color=[colours[r["solver"]] for r in stab])
     axes[0].set_ylabel("largest stable fixed dt [ms]")
     axes[0].set_title("Dam break (12 across), fixed step")
     for solver, c in colours.items():
         pts = [r for r in rows if r["study"] == "accuracy" and r["solver"] == solver and r["stable"]]
         axes[1].plot([r["wall_per_simulated_second"] for r in pts], [r["error"] for r in pts], "o-", color=c,
-                     label=f"{solver.upper()} (dt {pts[0]['dt'] if pts else '-'})")
+                     label=f"{label(solver)} (dt {pts[0]['dt'] if pts else '-'})")
         for r in pts:
             axes[1].annotate(f"{r['particles'] / 1000:.1f}k", (r["wall_per_simulated_second"], r["error"]), fontsize=7,
                              xytext=(4, 3), textcoords="offset points")
         for r in rows:
             if r["study"] == "accuracy" and r["solver"] == solver and not r["stable"]:
                 axes[1].text(0.01, 0.95 - 0.05 * list(colours).index(solver),
-                             f"{solver.upper()} unstable at {r['resolution']} across", transform=axes[1].transAxes,
+                             f"{label(solver)} unstable at {r['particles'] / 1000:.1f}k particles ({r['resolution']} across)",
+                             transform=axes[1].transAxes,
                              fontsize=7, color=c)
     axes[1].set_xscale("log")
     axes[1].set_xlabel("wall seconds per simulated second (log)")
