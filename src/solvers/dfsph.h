@@ -35,6 +35,7 @@
 #include "../common/forces.h"
 #include "../common/particle_view.h"
 #include "../common/sph_hd.h"
+#include "reduction.h"
 #include "wcsph.h"
 
 namespace sph {
@@ -161,11 +162,6 @@ struct ApplyFn {
   }
 };
 
-struct SolverErrorOf {
-  const float* error;
-  SPH_HD float operator()(int32_t i) const { return error[i]; }
-};
-
 // One of the two solves ([BK15] algorithms 2 and 3): warm start, then corrections until the mean residual is
 // within tolerance (checked every check_every iterations once min_iterations are done) or max_iterations.
 // Returns the iterations; error: the mean error the solve ended at; capped: it stopped at the cap above tolerance.
@@ -183,14 +179,14 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start});
   if (s.warm_start) x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, 0.0f});  // kept as it is
   x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt, kept, kDensity ? 1.0f : 1.0f / dt});
-  error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
+  error = mean_of(x, p.solver_error, n);
   int32_t it = 0;
   while (it < s.max_iterations && (it < min_iterations || error > double(tolerance))) {
     x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, keep});
     x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt, kept, kDensity ? 1.0f : 1.0f / dt});
     ++it;
     if (it >= min_iterations && (it % s.check_every == 0 || it == s.max_iterations))
-      error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
+      error = mean_of(x, p.solver_error, n);
   }
   capped = it == s.max_iterations && error > double(tolerance);
   return it;

@@ -24,6 +24,7 @@
 #include "../common/forces.h"
 #include "../common/pbf.h"
 #include "../common/sph_hd.h"
+#include "reduction.h"
 
 namespace sph {
 namespace pbf {
@@ -150,11 +151,6 @@ struct ApplyVelocityFn {
   }
 };
 
-struct SolverErrorOf {
-  const float* error;
-  SPH_HD float operator()(int32_t i) const { return error[i]; }
-};
-
 // The constraint iterations: density, error and lambda in one pass, then (unless done) Delta p and its
 // application; the last pass computes the density only.
 // Returns the iterations made; error: the mean compression at the end; capped: a tolerance was set and not met.
@@ -172,7 +168,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
     if (last) x.for_each(DensityFn<C>{x.constants(), g, p});
     else x.for_each(DensityLambdaFn<C>{x.constants(), g, p});
     if (last || s.density_tolerance > 0.0f) {
-      error = n > 0 ? x.sum(n, SolverErrorOf{p.solver_error}) / double(n) : 0.0;
+      error = mean_of(x, p.solver_error, n);
       if (last || error <= double(s.density_tolerance)) break;
     }
     x.for_each(CorrectionFn<C>{x.constants(), g, p});

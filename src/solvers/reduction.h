@@ -33,10 +33,12 @@ struct GroupSumFn {
   }
 };
 
-// The levels above read the level below: out[g] = in[g w] + ... over the group's entries below n.
-struct LevelOf {
-  const double* in;
-  SPH_HD double operator()(int32_t i) const { return in[i]; }
+// The values of an array as f(i): a solver's per-particle errors (float), and the levels above the first
+// (double: out[g] = in[g w] + ... over the group's entries below n).
+template <class T>
+struct ValuesOf {
+  const T* values;
+  SPH_HD double operator()(int32_t i) const { return double(values[i]); }
 };
 
 // The whole sum of f(0) ... f(n - 1) in the order above, with loop(count, functor) running functor(g) for
@@ -50,13 +52,20 @@ const double* reduce_sum_into(int32_t n, const F& f, double* a, double* b, Loop&
   loop(m, GroupSumFn<F>{f, n, a});
   while (m > 1) {
     const int32_t next = reduce_groups(m);
-    loop(next, GroupSumFn<LevelOf>{LevelOf{a}, m, b});
+    loop(next, GroupSumFn<ValuesOf<double>>{ValuesOf<double>{a}, m, b});
     double* t = a;
     a = b;
     b = t;
     m = next;
   }
   return a;
+}
+
+// The mean of values[0 .. n - 1] through the back end's deterministic sum (Exec::sum, execution.h); 0 for
+// n = 0. The iterative solvers' convergence test.
+template <class Exec>
+double mean_of(Exec& x, const float* values, int32_t n) {
+  return n > 0 ? x.sum(n, ValuesOf<float>{values}) / double(n) : 0.0;
 }
 
 }  // namespace sph
