@@ -96,7 +96,8 @@ class Demo {
     panel_.near_stiffness = f.near_stiffness;
     panel_.dt_max = float(scene.time_step.mode == TimeStepMode::Fixed ? scene.time_step.dt : scene.time_step.max);
     panel_.scene = scene.name;
-    panel_.integrator = integrator_name(scene.integrator);
+    panel_.integrator = scene.solver == Solver::Wcsph ? integrator_name(scene.integrator)
+                                                      : std::string("solver ") + solver_name(scene.solver);
     // A frame shows about 1/60 s of simulated time when the back end keeps up.
     panel_.substeps = std::clamp(int(std::ceil((1.0 / 60.0) / std::max(1e-5, double(panel_.dt_max)))), 1, 16);
     // Camera and floor: the grid's domain without its 2h band, or the container.
@@ -342,6 +343,10 @@ class Demo {
     panel_.sim_time = sim_->time();
     panel_.dt = sim_->last_dt();
     panel_.density_error = measure(sim_->setup().constants, ps).density_error_mean;
+    if (sim_->scene().solver != Solver::Wcsph) {
+      panel_.solver_iterations = sim_->solver_stats().density_iterations;
+      panel_.solver_error = sim_->solver_stats().density_error;
+    }
     draw_panel(panel_);
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

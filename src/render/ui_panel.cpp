@@ -42,6 +42,8 @@ bool draw_panel(PanelModel& m) {
   ImGui::Text("t = %.4f s   dt = %.2e s", m.sim_time, m.dt);
   ImGui::Text("simulated / real time: %.3f", m.realtime_ratio);
   ImGui::Text("mean density error: %.2f %%", 100.0 * m.density_error);
+  if (m.solver_iterations >= 0)
+    ImGui::Text("solve: %d iterations, ends at %.3f %%", m.solver_iterations, 100.0 * m.solver_error);
   for (const std::string& text : m.messages) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
     ImGui::TextWrapped("%s", text.c_str());

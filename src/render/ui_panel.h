@@ -26,6 +26,10 @@ struct PanelModel {
   long particles = 0;
   double fps = 0.0, sim_ms = 0.0, draw_ms = 0.0, sim_time = 0.0, realtime_ratio = 0.0, dt = 0.0;
   double density_error = 0.0;
+  // the iterative solvers' last step (DFSPH, PBF; solver_iterations < 0 under WCSPH): iterations and the
+  // error the solve ended at (a fraction of rho0)
+  int solver_iterations = -1;
+  double solver_error = 0.0;
   PhaseTimes phase_per_step;  // ms per step by phase, averaged over the last frames
   ColourRange legend;
   std::vector<std::string> backends;
