@@ -273,3 +273,19 @@ TEST_CASE("PBF's vorticity confinement feeds a spinning blob's rotation, without
   CHECK(std::fabs(without - l0) <= 0.02 * l0);
   CHECK(with > 1.05 * without);
 }
+
+TEST_CASE("DFSPH's density solve reaches its tolerance within the iteration cap on the dam break", "[solvers][dfsph]") {
+  // Issue 12: eta = 0.01% of rho0 within max_iterations at every step of the collapse and the surge (T <= 3).
+  const sph::Scene scene = scene_file("dam_break.json", {"solver=dfsph", "resolution.particles_across=10"});
+  sph::Simulation sim(scene, cpu_factory(), 0.17);
+  while (sim.time() < 0.17) sim.advance();
+  const sph::SolverTotals& t = sim.solver_totals();
+  INFO(t.steps << " steps: density iterations mean " << double(t.density_iterations) / double(t.steps) << ", max "
+               << t.max_density_iterations << ", largest end error " << t.max_density_error << ", capped "
+               << t.density_capped_steps << " (divergence " << t.divergence_capped_steps << ")");
+  REQUIRE(t.steps > 50);
+  CHECK(t.density_capped_steps == 0);
+  CHECK(t.divergence_capped_steps == 0);
+  CHECK(t.max_density_iterations < scene.dfsph.max_iterations);
+  CHECK(t.max_density_error <= double(scene.dfsph.density_tolerance));
+}
