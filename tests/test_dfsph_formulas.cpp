@@ -233,11 +233,3 @@ TEST_CASE("DFSPH pressure acceleration conserves linear momentum on a random clo
   CHECK(seed_total > 1e-3 * magnitude);
   CHECK(seed_total > 1e4 * length(total));
 }
-
-TEST_CASE("DFSPH CFL step", "[dfsph]") {
-  // Seed eq. 3: dt = 0.4 d / v_max, capped at dt_max, and dt_max when nothing moves.
-  CHECK(sph::dfsph_cfl_step(0.01f, 2.0f, 0.01f) == Approx(0.002f).epsilon(1e-6));
-  CHECK(sph::dfsph_cfl_step(0.01f, 0.1f, 0.01f) == 0.01f);
-  CHECK(sph::dfsph_cfl_step(0.01f, 0.0f, 0.005f) == 0.005f);
-  CHECK(sph::dfsph_cfl_step(0.01f, 4.0f, 0.01f, 0.2f) == Approx(0.0005f).epsilon(1e-6));
-}

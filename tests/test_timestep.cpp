@@ -7,6 +7,7 @@
 #include <map>
 #include <random>
 
+#include "common/time_step.h"
 #include "common/viscous_limit.h"
 #include "physics_helpers.h"
 
@@ -126,3 +127,23 @@ TEST_CASE("a cube at mu = 1000 Pa s falls freely as one rigid block", "[timestep
     CHECK(worst < 0.01 * g * t);
   }
 }
+
+TEST_CASE("the incompressible solvers' step is [BK15]'s CFL step, capped, without a sound-speed limit", "[timestep]") {
+  // Seed 000 eq. 3: dt = C_v d / v_max (C_v = 0.4 by default), capped at time_step.max, and the cap when
+  // nothing moves; the explicit viscous limit as for WCSPH.
+  sph::TimeStepSpec t;
+  t.max = 0.01;
+  CHECK(sph::choose_incompressible_step(t, 0.01, 0.0, 2.0).dt == Approx(0.002).epsilon(1e-12));
+  CHECK(sph::choose_incompressible_step(t, 0.01, 0.0, 2.0).limit == sph::StepLimit::Velocity);
+  CHECK(sph::choose_incompressible_step(t, 0.01, 0.0, 0.1).dt == 0.01);
+  CHECK(sph::choose_incompressible_step(t, 0.01, 0.0, 0.0).limit == sph::StepLimit::Maximum);
+  t.cfl_velocity = 0.2;
+  CHECK(sph::choose_incompressible_step(t, 0.01, 0.0, 4.0).dt == Approx(0.0005).epsilon(1e-12));
+  const double rate = 1000.0;  // 1/s: the viscous limit cfl_viscosity 2 / rate = 1 ms decides
+  CHECK(sph::choose_incompressible_step(t, 0.01, rate, 0.1).dt == Approx(t.cfl_viscosity * 2.0 / rate));
+  CHECK(sph::choose_incompressible_step(t, 0.01, rate, 0.1).limit == sph::StepLimit::Viscosity);
+  t.mode = sph::TimeStepMode::Fixed;
+  t.dt = 0.004;
+  CHECK(sph::choose_incompressible_step(t, 0.01, rate, 100.0).dt == 0.004);
+}
+

@@ -47,9 +47,6 @@ constexpr float kDfsphRelaxation = 0.5f;
 // not a divergence, and correcting it flung surface particles up at steps of 4 ms (measured).
 constexpr float kDfsphMinSupport = 0.6f;
 
-// Seed eq. 3: dt <= 0.4 d / v_max, d the particle diameter (spacing).
-constexpr float kDfsphCflFactor = 0.4f;
-
 // Seed eq. 7: rho_i = sum_j m_j W_ij with the cubic spline, the particle itself included, plus the wall
 // ghosts. [kg/m^3]
 SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
@@ -162,14 +159,6 @@ SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const Grid
     if (r2 > 0.0f) acc -= (p.pos_mass[j].w * (ki + kappa[j] / p.density[j]) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
   return acc;
-}
-
-// Seed eq. 3 (CFL): the largest step with dt <= factor d / v_max, d the particle spacing [m], v_max the largest
-// particle speed [m/s], capped at dt_max [s] (also when nothing moves, v_max = 0). [s]
-SPH_HD inline float dfsph_cfl_step(float spacing, float v_max, float dt_max, float factor = kDfsphCflFactor) {
-  if (!(v_max > 0.0f)) return dt_max;
-  const float dt = factor * spacing / v_max;
-  return dt < dt_max ? dt : dt_max;
 }
 
 }  // namespace sph

@@ -102,20 +102,30 @@ SPH_HD inline Vec3 mirror_velocity(const NearWalls& w, int32_t image, Vec3 v) {
 // Calls f(b, image, x_ghost, r2) for every ghost within h of particle a (at xa): each neighbour b's
 // images 1.. across `walls`, r2 = |xa - x_ghost|^2 < h^2; the ghost's velocity is
 // mirror_velocity(walls, image, v_b). Only neighbours within h can have one.
-template <class F>
-SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, const ParticleView& p,
-                                  const NearWalls& walls, int32_t a, F&& f) {
+// The same, for neighbours selected by another radius and placed at other positions: the neighbours b of a
+// within sqrt(select_r2) at the grid's positions `select` (for_each_neighbour), their ghosts taken from
+// their positions `pos`, and only those within h of a's own (PBF: src/common/pbf.h, whose iterations
+// move the particles after the grid phase). for_each_ghost is select = pos = pos_mass, select_r2 = h^2.
+template <class Pos, class F>
+SPH_HD inline void for_each_ghost_of(const SimConstants& c, const GridView& grid, const Vec4* select, float select_r2,
+                                     const Pos* pos, const NearWalls& walls, int32_t a, F&& f) {
   if (walls.count == 0) return;
-  const Vec3 xa = xyz(p.pos_mass[a]);
+  const Vec3 xa = xyz(pos[a]);
   const float h2 = c.kernel.h2;
-  for_each_neighbour(grid, p.pos_mass, a, h2, [&](int32_t b, Vec3, float) {
-    const Vec3 xb = xyz(p.pos_mass[b]);
+  for_each_neighbour(grid, select, a, select_r2, [&](int32_t b, Vec3, float) {
+    const Vec3 xb = xyz(pos[b]);
     for (int32_t image = 1; image < image_count(walls); ++image) {
       const Vec3 xg = mirror_position(walls, image, xb);
       const float r2 = length2(xa - xg);
       if (r2 < h2) f(b, image, xg, r2);
     }
   });
+}
+
+template <class F>
+SPH_HD inline void for_each_ghost(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                  const NearWalls& walls, int32_t a, F&& f) {
+  for_each_ghost_of(c, grid, p.pos_mass, c.kernel.h2, p.pos_mass, walls, a, f);
 }
 
 // A wall pushes and never pulls. Negative pressure (sph.negative_pressure "keep") makes a ghost pair

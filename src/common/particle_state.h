@@ -46,6 +46,19 @@ struct Spawn {
   X(float, alpha) X(float, kappa) X(float, lambda) X(float, solver_error) X(Vec3, delta_pos) X(Vec3, omega) \
   X(int32_t, support)
 
+// Sizes the derived fields of `arrays` (ParticleState here, the device arrays in src/cuda/device_arrays.h:
+// any type with the fields of these lists as resizable vectors) to n particles, and the solver fields to n
+// when solver_fields is set, else to 0.
+template <class Arrays>
+void fit_derived_fields(Arrays& arrays, std::size_t n, bool solver_fields) {
+#define SPH_FIT_DERIVED_FIELD(type, name) arrays.name.resize(n);
+  SPH_DERIVED_FIELDS(SPH_FIT_DERIVED_FIELD)
+#undef SPH_FIT_DERIVED_FIELD
+#define SPH_FIT_SOLVER_FIELD(type, name) arrays.name.resize(solver_fields ? n : 0);
+  SPH_SOLVER_FIELDS(SPH_FIT_SOLVER_FIELD)
+#undef SPH_FIT_SOLVER_FIELD
+}
+
 struct ParticleState {
 #define SPH_DECLARE_FIELD(type, name) std::vector<type> name;
   SPH_PARTICLE_FIELDS(SPH_DECLARE_FIELD)
@@ -64,14 +77,7 @@ struct ParticleState {
 
   // Sizes the derived fields to the particle count (their values are written before every use), and the
   // solver fields too when solver_fields is set (else frees them).
-  void fit_derived(bool solver_fields) {
-#define SPH_FIT_DERIVED_FIELD(type, name) name.resize(size());
-    SPH_DERIVED_FIELDS(SPH_FIT_DERIVED_FIELD)
-#undef SPH_FIT_DERIVED_FIELD
-#define SPH_FIT_SOLVER_FIELD(type, name) name.resize(solver_fields ? size() : 0);
-    SPH_SOLVER_FIELDS(SPH_FIT_SOLVER_FIELD)
-#undef SPH_FIT_SOLVER_FIELD
-  }
+  void fit_derived(bool solver_fields) { fit_derived_fields(*this, size(), solver_fields); }
 
   // After a swap with a reordering buffer: takes back the derived fields, so that only one of the two
   // states ever holds them (the memory estimate below counts them once).

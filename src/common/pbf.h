@@ -46,16 +46,7 @@ SPH_HD inline void for_each_pbf_pair(const SimConstants& c, const GridView& grid
 template <class F>
 SPH_HD inline void for_each_pbf_ghost(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                       const NearWalls& walls, int32_t i, F&& f) {
-  if (walls.count == 0) return;
-  const Vec3 xi = p.pos[i];
-  const float h2 = c.kernel.h2;
-  for_each_neighbour(grid, p.pos_mass, i, neighbour_radius2(c), [&](int32_t j, Vec3, float) {
-    for (int32_t image = 1; image < image_count(walls); ++image) {
-      const Vec3 xg = mirror_position(walls, image, p.pos[j]);
-      const float r2 = length2(xi - xg);
-      if (r2 < h2) f(j, image, xg, r2);
-    }
-  });
+  for_each_ghost_of(c, grid, p.pos_mass, neighbour_radius2(c), p.pos, walls, i, f);
 }
 
 // rho_i = sum_j m_j W_poly6(x_i - x_j), the particle itself included, at the positions p.pos (the predicted

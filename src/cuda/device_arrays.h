@@ -122,14 +122,7 @@ struct DeviceArrays {
   // Sizes the derived fields (SPH_DERIVED_FIELDS) to the particle count; their values are left to the
   // grid phase's packing and the pressure phase, which write them before every use; the solver fields
   // (SPH_SOLVER_FIELDS) too when solver_fields is set, else they are freed.
-  void fit_derived(bool solver_fields) {
-#define SPH_FIT_DERIVED_FIELD(type, name) name.resize(size());
-    SPH_DERIVED_FIELDS(SPH_FIT_DERIVED_FIELD)
-#undef SPH_FIT_DERIVED_FIELD
-#define SPH_FIT_SOLVER_FIELD(type, name) name.resize(solver_fields ? size() : 0);
-    SPH_SOLVER_FIELDS(SPH_FIT_SOLVER_FIELD)
-#undef SPH_FIT_SOLVER_FIELD
-  }
+  void fit_derived(bool solver_fields) { fit_derived_fields(*this, size(), solver_fields); }
 
   // After a swap with the reordering buffer: takes back the derived fields, so that only one of the two
   // ever holds them (kBytesPerParticle counts them once).

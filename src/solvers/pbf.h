@@ -54,17 +54,21 @@ struct PredictFn {
   }
 };
 
-// Density at x* and the particle's compression max(C, 0) for the convergence test (inlet particles: 0).
+// Stores particle i's density and its compression max(C, 0) for the convergence test (inlet particles: 0).
+SPH_HD inline void store_density(const SimConstants& c, const ParticleView& p, int32_t i, float rho) {
+  const float constraint = pbf_constraint(rho, c.fluids[p.fluid[i]].rest_density);
+  p.density[i] = rho;
+  p.solver_error[i] = p.age[i] < 0.0f || constraint < 0.0f ? 0.0f : constraint;
+}
+
+// Density at x* and the compression (store_density).
 template <class C>
 struct DensityFn {
   C c;
   GridView g;
   ParticleView p;
   SPH_KERNEL_FN void operator()(int32_t i) const {
-    const float rho = pbf_density(*c, g, p, i);
-    const float constraint = pbf_constraint(rho, (*c).fluids[p.fluid[i]].rest_density);
-    p.density[i] = rho;
-    p.solver_error[i] = p.age[i] < 0.0f || constraint < 0.0f ? 0.0f : constraint;
+    store_density(*c, p, i, pbf_density(*c, g, p, i));
   }
 };
 
@@ -77,9 +81,7 @@ struct DensityLambdaFn {
   SPH_KERNEL_FN void operator()(int32_t i) const {
     float rho;
     const float lambda = pbf_density_lambda(*c, g, p, (*c).pbf, i, rho);
-    const float constraint = pbf_constraint(rho, (*c).fluids[p.fluid[i]].rest_density);
-    p.density[i] = rho;
-    p.solver_error[i] = p.age[i] < 0.0f || constraint < 0.0f ? 0.0f : constraint;
+    store_density(*c, p, i, rho);
     p.lambda[i] = p.age[i] < 0.0f ? 0.0f : lambda;
   }
 };
