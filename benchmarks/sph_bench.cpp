@@ -1,6 +1,7 @@
 // sph_bench: the CPU-vs-GPU benchmark. Fixed workloads on every usable back end: the thesis's performance
 // cube (16^3 and 32^3, thesis 5.2 parameters), the dam break at several sizes, and the 16k dam break under
-// each pressure solver (WCSPH, DFSPH, PBF at 4 ms). Warm-up steps, repeated runs. ms/step is the median of
+// each pressure solver (WCSPH, DFSPH, PBF at 4 ms) and each wall model (mirror walls, boundary particles:
+// their cost ratio per step is printed). Warm-up steps, repeated runs. ms/step is the median of
 // the measured steps (robust to other work on the machine); the time by phase is a mean per step (the back
 // ends accumulate it), and ms_mean is the mean of the same steps, so the two can be compared. The solvers
 // take steps of very different length, so a step's cost does not compare them: each workload also reports
@@ -186,7 +187,8 @@ int main(int argc, char** argv) {
                "Workloads: the thesis's performance cube (16^3 and 32^3 particles, thesis 5.2 parameters), a cube of\n"
                "8,000 particles in a 0.2 m and a 50 m tank (the grid's cost against the domain's size), the\n"
                "dam break at several resolutions, and the dam break under each pressure solver: solver_wcsph,\n"
-               "solver_dfsph (its CFL step, at most the scene's time_step.max) and solver_pbf (fixed dt 4 ms), each\n"
+               "solver_dfsph (its CFL step, at most the scene's time_step.max) and solver_pbf (fixed dt 4 ms), and\n"
+               "under each wall model, walls_mirror and walls_particles (boundary particles), each\n"
                "measured over the first --solver-time simulated seconds, with wall seconds per simulated second,\n"
                "mean dt and solver iterations per step. Writes OUT/bench.csv and OUT/bench.json naming the hardware."};
   sph::use_error_prefix(app);
@@ -240,6 +242,11 @@ int main(int argc, char** argv) {
   workloads.push_back({"solver_dfsph", "dam_break.json", {across, "solver=dfsph"}, 0.0, 0.0, false, solver_time});
   workloads.push_back({"solver_pbf", "dam_break.json", {across, "solver=pbf", "time_step.mode=fixed", "time_step.dt=0.004"},
                        0.0, 0.0, false, solver_time});
+  // The wall models on the same dam break (issue 13: boundary particles at most 1.3 times mirror walls per
+  // step), over the same stretch of the flow.
+  for (const char* walls : {"mirror", "particles"})
+    workloads.push_back({std::string("walls_") + walls, "dam_break.json", {across, std::string("sph.walls=") + walls}, 0.0,
+                         0.0, false, solver_time});
   // The same 0.1 m cube of 8,000 particles in a 0.2 m and a 50 m tank: the grid's cost must follow the
   // particles, not the domain (issue 11, item 7: at most 1.5 times).
   if (!quick)
@@ -345,6 +352,13 @@ int main(int argc, char** argv) {
     std::printf("%-8s %-16s %-6s %7ld %11.4f %12.4f %12.2f %9s %11.2f %11.2f %7ld\n", r.backend.c_str(), r.workload.c_str(),
                 r.solver.c_str(), r.steps, 1e3 * r.mean_dt(), 1.0 / r.wall_per_simulated(), r.wall_per_simulated(), vs_wcsph,
                 r.per_step(r.solver_iterations), r.per_step(r.divergence_iterations), r.capped_solves);
+  }
+  for (const Result& r : results) {
+    if (r.workload != "walls_particles") continue;
+    for (const Result& base : results)
+      if (base.workload == "walls_mirror" && base.backend == r.backend)
+        std::printf("%s: boundary particles cost %.2f times mirror walls per step (mean ms/step %.3f / %.3f)\n",
+                    r.backend.c_str(), r.ms_mean / base.ms_mean, r.ms_mean, base.ms_mean);
   }
 
   std::error_code ec;

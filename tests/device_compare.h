@@ -142,6 +142,7 @@ class ProbedCpu final : public sph::Backend {
   ProbedCpu(const sph::SimConstants& c, std::shared_ptr<Contacts> contacts) : cpu_(c), contacts_(std::move(contacts)) {}
   std::string name() const override { return "cpu"; }
   void upload(const sph::ParticleState& s) override { cpu_.upload(s); }
+  void set_boundary(const sph::BoundaryParticles& b) override { cpu_.set_boundary(b); }
   void initialise_forces() override { cpu_.initialise_forces(); }
   void step(float dt) override {
     for (const sph::Phase p : sph::step_phases(cpu_.constants().solver)) step_phase(p, dt);
@@ -194,10 +195,14 @@ class ProbedCpu final : public sph::Backend {
 
 // Runs the phases of one step one at a time on the reference and on the device back end from the same
 // particles, and checks after each phase that every field agrees. Returns the reference's state after each
-// phase (step_phases(c.solver) order) for the callers' checks that the case exercises what it claims.
-inline std::vector<sph::ParticleState> compare_phases(const sph::SimConstants& c, const sph::ParticleState& input, float dt) {
+// phase (step_phases(c.solver) order) for the callers' checks that the case exercises what it claims. Both
+// back ends get the boundary particles given (none by default).
+inline std::vector<sph::ParticleState> compare_phases(const sph::SimConstants& c, const sph::ParticleState& input, float dt,
+                                                      const sph::BoundaryParticles& boundary = sph::BoundaryParticles{}) {
   sph::CpuBackend cpu(c);
   std::unique_ptr<sph::Backend> dev = sph::backend_factory(device_name())(c);
+  cpu.set_boundary(boundary);
+  dev->set_boundary(boundary);
   cpu.upload(input);
   dev->upload(input);
   std::vector<sph::ParticleState> after;

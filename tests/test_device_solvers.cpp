@@ -22,11 +22,13 @@ void check_solver_case(const sph::Scene& scene, int steps) {
   const sph::SimConstants& c = ref->setup().constants;
   const float dt = float(ref->last_dt());
   REQUIRE(dt > 0.0f);
-  compare_phases(c, ref->particles(), dt);
+  compare_phases(c, ref->particles(), dt, ref->setup().boundary);
 
   // The statistics of one more step from the same state on both back ends.
   sph::CpuBackend cpu(c);
   std::unique_ptr<sph::Backend> dev = sph::backend_factory(device_name())(c);
+  cpu.set_boundary(ref->setup().boundary);
+  dev->set_boundary(ref->setup().boundary);
   cpu.upload(ref->particles());
   dev->upload(ref->particles());
   cpu.step(dt);
@@ -69,4 +71,22 @@ TEST_CASE("device solvers: PBF with mirror walls", "[device][solvers]") {
                                                                 "time_step.mode=fixed", "time_step.dt=0.004"});
   REQUIRE(scene.mirror_walls);
   check_solver_case(scene, 30);
+}
+
+TEST_CASE("device solvers: every solver with boundary particles", "[device][solvers][boundary_particles]") {
+  // Issue 13: the boundary particles' sums (density, pressure and friction for WCSPH, alpha, rate and kappa for
+  // DFSPH, lambda and Delta p for PBF) bit for bit. slip 0.5 so that the friction term runs.
+  for (const char* solver : {"wcsph", "dfsph", "pbf"}) {
+    const sph::Scene scene = scene_file("hydrostatic_tank.json", {"resolution.particles_across=8", std::string("solver=") + solver,
+                                                                  "sph.walls=particles", "boundaries.0.slip=0.5"});
+    REQUIRE(scene.boundary_particles);
+    INFO("solver " << solver);
+    if (scene.solver == sph::Solver::Wcsph) {
+      std::unique_ptr<sph::Simulation> ref;
+      compare_runs(scene, 40, &ref);
+      compare_phases(ref->setup().constants, ref->particles(), float(ref->last_dt()), ref->setup().boundary);
+    } else {
+      check_solver_case(scene, 30);
+    }
+  }
 }

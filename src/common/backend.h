@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "boundary_particles.h"
 #include "params.h"
 #include "particle_state.h"
 
@@ -116,6 +117,9 @@ class Backend {
   virtual ~Backend() = default;
   virtual std::string name() const = 0;
   virtual void upload(const ParticleState& state) = 0;   // replaces the particles
+  // Replaces the static boundary particles (sph.walls = "particles"; none by default): a copy in the back
+  // end's memory, read by every neighbour loop through GridView::boundary.
+  virtual void set_boundary(const BoundaryParticles& boundary) = 0;
   virtual void initialise_forces() = 0;                   // accelerations of the uploaded state, no motion
   virtual void step(float dt) = 0;                        // the phases of step_phases(solver), in order
   // Runs one phase of the solver's step alone, exactly as step(dt) runs it, so that tests can compare back

@@ -45,6 +45,14 @@ SPH_HD inline void density_with(const SimConstants& c, const GridView& grid, con
     const Vec3 vab = kSummation ? Vec3{0.0f, 0.0f, 0.0f} : p.vel_force[a] - mirror_velocity(walls, image, p.vel_force[b]);
     density_pair(c, kSummation, p.pos_mass[b].w, xa - xg, r2, vab, rho, rho_near, drho);
   });
+  // Boundary particles [AIA12] eq. 5: Psi_b = rho0_a V_b in place of a neighbour's mass, at rest.
+  if (grid.boundary.n > 0) {
+    const float rho0 = c.fluids[p.fluid[a]].rest_density;
+    const Vec3 va = kSummation ? Vec3{0.0f, 0.0f, 0.0f} : p.vel_force[a];
+    for_each_boundary(grid.boundary, xa, k.h2, [&](int32_t, Vec3 xab, float r2, float volume) {
+      density_pair(c, kSummation, rho0 * volume, xab, r2, va, rho, rho_near, drho);
+    });
+  }
   p.density[a] = kSummation ? rho : p.density[a] + dt * drho;
   p.near_density[a] = rho_near;
 }

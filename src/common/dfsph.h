@@ -59,6 +59,10 @@ SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, c
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) {
     rho += p.pos_mass[j].w * cubic_spline(k, sqrtf(r2));
   });
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  for_each_boundary(grid.boundary, xyz(p.pos_mass[i]), k.h2, [&](int32_t, Vec3, float r2, float volume) {
+    rho += rho0 * volume * cubic_spline(k, sqrtf(r2));
+  });
   return rho;
 }
 
@@ -81,6 +85,10 @@ SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, con
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     if (r2 > 0.0f) sum_grad += (p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
+    if (r2 > 0.0f) sum_grad += (rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+  });
   const float denominator = length2(sum_grad) + sum_grad2;
   const float scale = p.pos_mass[i].w * k.cubic / k.h;
   if (denominator <= kDfsphAlphaEps * scale * scale) return 0.0f;
@@ -97,6 +105,7 @@ SPH_HD inline int32_t dfsph_support(const SimConstants& c, const GridView& grid,
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t, Vec3, float) { ++count; });
   const NearWalls walls = c.mirror_walls ? near_walls(c, xyz(p.pos_mass[i])) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t, int32_t, Vec3, float) { ++count; });
+  for_each_boundary(grid.boundary, xyz(p.pos_mass[i]), k.h2, [&](int32_t, Vec3, float, float) { ++count; });
   return float(count) >= kDfsphMinSupport * bulk ? 1 : 0;
 }
 
@@ -117,6 +126,10 @@ SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& gr
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     if (r2 > 0.0f) rate += p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi, xi - xg);
+  });
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
+    if (r2 > 0.0f) rate += rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi, xib);
   });
   return rate;
 }
@@ -157,6 +170,12 @@ SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const Grid
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     if (r2 > 0.0f) acc -= (p.pos_mass[j].w * (ki + kappa[j] / p.density[j]) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+  });
+  // Boundary particles push with kappa_i alone ([BK15] with [AIA12]'s boundary; SPlisHSPlasH): the term
+  // alpha's |sum grad|^2 assumes, so that one Jacobi update of kappa_i meets its own target at a wall.
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
+    if (r2 > 0.0f) acc -= (rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
   });
   return acc;
 }

@@ -137,6 +137,55 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
   acc += s * xab;
 }
 
+// The boundary particles' forces on fluid particle a at xa (boundary_view.h), [AIA12] section 3.2:
+// - pressure: the boundary particle b stands for fluid at rest density, mass Psi_b = rho0_a V_b, with a's
+//   pressure extrapolated hydrostatically to x_b (as the mirror ghosts, mirror_walls.h; SPlisHSPlasH mirrors
+//   P_a unchanged), and P_a, P_b >= 0 so a wall never pulls: the pressure pair term of the form Model::form;
+//   the near pressure mirrored unchanged;
+// - friction [AIA12] eq. 11: the fluid's viscosity terms against a wall at rest, times the wall's factor
+//   1 - slip (0 on a free-slip wall). [m/s^2]
+template <class Model>
+SPH_HD inline Vec3 boundary_forces(const SimConstants& c, const BoundaryView& bv, const PairSide& a, Vec3 xa) {
+  const KernelCoeffs& k = c.kernel;
+  const float rho0 = a.fluid->rest_density, inv_rho0 = 1.0f / rho0;
+  PairSide fluid = a, wall = a;
+  fluid.pressure = a.pressure > 0.0f ? a.pressure : 0.0f;
+  fluid.pressure_rho2 = a.pressure > 0.0f ? a.pressure_rho2 : 0.0f;
+  fluid.near_pressure = a.near_pressure > 0.0f ? a.near_pressure : 0.0f;
+  fluid.near_pressure_rho2 = a.near_pressure > 0.0f ? a.near_pressure_rho2 : 0.0f;
+  wall.vel = Vec3{0.0f, 0.0f, 0.0f};
+  wall.rho = rho0;
+  wall.inv_rho = inv_rho0;
+  wall.near_pressure = fluid.near_pressure;
+  wall.near_pressure_rho2 = fluid.near_pressure * inv_rho0 * inv_rho0;
+  Vec3 acc{0.0f, 0.0f, 0.0f};
+  for_each_boundary(bv, xa, k.h2, [&](int32_t b, Vec3 xab, float r2, float volume) {
+    if (r2 <= 0.0f) return;
+    wall.mass = rho0 * volume;
+    const float r = sqrtf(r2), inv_r = 1.0f / r;
+    float s = 0.0f;
+    if (Model::pressure) {
+      // [Adami et al. 2012] eq. 27 for a wall at rest: P_b = P_a + rho0 g.(x_b - x_a), so a column at rest is
+      // held without extra compression at the floor.
+      const float pb = fluid.pressure - rho0 * dot(c.gravity, xab);
+      const float pw = pb > 0.0f ? pb : 0.0f;
+      s = pressure_pair<Model::form>(wall.mass, fluid.pressure, fluid.pressure_rho2, fluid.inv_rho, pw,
+                                     pw * inv_rho0 * inv_rho0, wall.inv_rho) * spiky_dwdr(k, r) * inv_r;
+      if (Model::near)
+        s += pressure_pair<Model::form>(wall.mass, fluid.near_pressure, fluid.near_pressure_rho2, fluid.inv_rho,
+                                        wall.near_pressure, wall.near_pressure_rho2, wall.inv_rho) * near_dwdr(k, r) * inv_r;
+    }
+    acc += s * xab;
+    const float friction = bv.friction[b];
+    if (friction > 0.0f) {
+      Vec3 viscous{0.0f, 0.0f, 0.0f};
+      pressure_viscosity_pair<NonPressureForces>(c, fluid, wall, xab, r2, fluid.vel, viscous);
+      acc += friction * viscous;
+    }
+  });
+  return acc;
+}
+
 // The forces on particle a under the model Model (with_force_model picks it once per loop).
 template <class Model>
 SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a) {
@@ -184,6 +233,7 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
     pressure_viscosity_pair<Model>(c, side_a, ghost, xag, r2, va - vg, pair);
     acc += push_only(walls, xg, pair);
   });
+  if (grid.boundary.n > 0) acc += boundary_forces<Model>(c, grid.boundary, side_a, xa);
   acc += c.gravity;  // external forces, thesis eq. 2.25
   if (c.user_force.strength != 0.0f) acc += user_force_acceleration(c, xa);
   p.acc[a] = acc;

@@ -362,6 +362,17 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
                      " m once the particles inside solids are removed");
 
   c.grid = make_grid(scene, s.particles, s.jets, s.h);
+  // The walls' boundary particles, over the domain the grid now spans (planes and quadrics reach that far).
+  if (scene.boundary_particles) {
+    try {
+      s.boundary = sample_boundary_particles(c, s.spacing, particle_budget(scene), s.report);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene.source + ": sph.walls: " + e.what());
+    }
+    std::ostringstream os;
+    os << s.boundary.size() << " boundary particles in all (sph.walls = \"particles\")";
+    s.report.push_back(os.str());
+  }
   s.blowup_speed = fallback_blowup_speed(scene, s.max_speed_of_sound, s.jets);
 }
 

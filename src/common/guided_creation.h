@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "boundary_particles.h"
 #include "emitters.h"
 #include "particle_state.h"
 #include "scene.h"
@@ -16,6 +17,7 @@ namespace sph {
 struct Setup {
   SimConstants constants{};
   ParticleState particles;         // instant emitters plus the jets' prefilled inlets
+  BoundaryParticles boundary;      // the walls' boundary particles (sph.walls = "particles"), else empty
   std::vector<JetEmitter> jets;
   double spacing = 0.0;            // d
   double h = 0.0;                  // support radius

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "boundary_view.h"
 #include "params.h"
 #include "vec3.h"
 
@@ -67,6 +68,7 @@ struct GridView {
   const uint64_t* block_code;  // blocks: each block's Morton code, ascending
   const int32_t* block_count;  // one value: blocks (device memory on the device build)
   int32_t block_capacity;      // blocks [0, block_capacity) have cell_start and block_neighbours entries
+  BoundaryView boundary;       // the static boundary particles (boundary_view.h); n = 0 without
 };
 
 }  // namespace sph

@@ -61,6 +61,8 @@ SPH_HD inline float pbf_density(const SimConstants& c, const GridView& grid, con
   });
   const NearWalls walls = c.mirror_walls ? near_walls(c, p.pos[i]) : NearWalls{};
   for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) { rho += p.pos_mass[j].w * poly6(k, r2); });
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  for_each_boundary(grid.boundary, p.pos[i], k.h2, [&](int32_t, Vec3, float r2, float volume) { rho += rho0 * volume * poly6(k, r2); });
   return rho;
 }
 
@@ -94,6 +96,11 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
   for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     rho += p.pos_mass[j].w * poly6(k, r2);
     if (r2 > 0.0f) grad_i += (p.pos_mass[j].w / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+  });
+  // Boundary particles [AIA12] like the ghosts: Psi_b = rho0 V_b, solid.
+  for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
+    rho += rest_density * volume * poly6(k, r2);
+    if (r2 > 0.0f) grad_i += (volume * spiky_grad_fac(k, sqrtf(r2))) * xib;
   });
   density = rho;
   const float denominator = sum_grad2 + length2(grad_i) + params.relaxation / k.h2;
@@ -139,6 +146,12 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
     if (r2 <= 0.0f) return;
     const float s = li + pbf_scorr(k, params, r2) * k.h2;
     dp += (p.pos_mass[j].w * s * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+  });
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
+    if (r2 <= 0.0f) return;
+    const float s = li + pbf_scorr(k, params, r2) * k.h2;
+    dp += (rho0 * volume * s * spiky_grad_fac(k, sqrtf(r2))) * xib;
   });
   return (1.0f / c.fluids[p.fluid[i]].rest_density) * dp;
 }

@@ -124,6 +124,7 @@ struct Scene {
   ViscosityModel viscosity = ViscosityModel::Morris;
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)
+  bool boundary_particles = false;     // sph.walls: "particles" (boundary_particles.h, [AIA12])
   Integrator integrator = Integrator::ModifiedVelocityVerlet;  // WCSPH's; DFSPH and PBF integrate their own way
   // The pressure solver ("solver") and the settings of the incompressible ones (blocks "dfsph", "pbf";
   // params.h says what each is). DFSPH reads sph.viscosity and sph.walls and the fluids' viscosity and

@@ -531,7 +531,11 @@ Scene read_scene(const json& root, const std::string& source) {
                                              {"artificial", ViscosityModel::Artificial}});
     s.clamp_negative_pressure =
         sr.choice<bool>("negative_pressure", s.clamp_negative_pressure, {{"keep", false}, {"clamp", true}});
-    s.mirror_walls = sr.choice<bool>("walls", s.mirror_walls, {{"penalty", false}, {"mirror", true}});
+    // 0 penalty, 1 mirror, 2 particles.
+    const int walls = sr.choice<int>("walls", s.boundary_particles ? 2 : s.mirror_walls ? 1 : 0,
+                                     {{"penalty", 0}, {"mirror", 1}, {"particles", 2}});
+    s.mirror_walls = walls == 1;
+    s.boundary_particles = walls == 2;
     sr.finish();
   }
 

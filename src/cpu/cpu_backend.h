@@ -17,6 +17,7 @@ class CpuBackend final : public Backend {
 
   std::string name() const override { return "cpu"; }
   void upload(const ParticleState& state) override { s_ = state; }
+  void set_boundary(const BoundaryParticles& boundary) override { boundary_ = boundary; }
   void initialise_forces() override;
   void step(float dt) override;
   void step_phase(Phase p, float dt) override;
@@ -43,7 +44,8 @@ class CpuBackend final : public Backend {
                     block_begin_.data(),
                     block_code_.data(),
                     &blocks_,
-                    blocks_};  // a table for every block
+                    blocks_,  // a table for every block
+                    boundary_.view()};
   }
   const SimConstants& constants() const { return c_; }
   ParticleState& state() { return s_; }
@@ -55,6 +57,7 @@ class CpuBackend final : public Backend {
   SimConstants c_;
   ParticleState s_;
   ParticleState sorted_;              // reorder target, swapped with s_
+  BoundaryParticles boundary_;        // static; read in place
   // The grid (grid_build.h): sorted keys, block of each particle, blocks' first particles and codes, cell
   // tables and neighbours, neighbour lists.
   struct SortRecord {

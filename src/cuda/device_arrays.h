@@ -6,6 +6,7 @@
 #include <thrust/device_vector.h>
 #include <thrust/execution_policy.h>
 
+#include "../common/boundary_particles.h"
 #include "../common/particle_state.h"
 #include "../common/particle_view.h"
 #include "../common/sph_hd.h"
@@ -195,6 +196,30 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(delta_pos.data()),
                         thrust::raw_pointer_cast(omega.data()),
                         thrust::raw_pointer_cast(support.data())};
+  }
+};
+
+// The static boundary particles (boundary_particles.h) in device memory: copied once, read through a
+// BoundaryView by every neighbour loop.
+struct DeviceBoundary {
+  DeviceVector<Vec4> pos_volume;
+  DeviceVector<float> friction;
+  DeviceVector<int32_t> cell_start;
+  BoundaryView geometry{};  // the host view's grid; its pointers are replaced by view()
+
+  void upload(const BoundaryParticles& b) {
+    pos_volume.assign(b.pos_volume.begin(), b.pos_volume.end());
+    friction.assign(b.friction.begin(), b.friction.end());
+    cell_start.assign(b.cell_start.begin(), b.cell_start.end());
+    geometry = b.view();
+  }
+  BoundaryView view() const {
+    BoundaryView v = geometry;
+    v.n = int32_t(pos_volume.size());
+    v.pos_volume = thrust::raw_pointer_cast(pos_volume.data());
+    v.friction = thrust::raw_pointer_cast(friction.data());
+    v.cell_start = thrust::raw_pointer_cast(cell_start.data());
+    return v;
   }
 };
 

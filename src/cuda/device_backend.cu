@@ -141,6 +141,10 @@ class DeviceBackend final : public Backend {
     });
     diag_current_ = false;
   }
+  void set_boundary(const BoundaryParticles& b) override {
+    settle();
+    run_phase(name_, "boundary upload", [&] { boundary_.upload(b); });
+  }
   // Waits for the last step's end when it recycled on cuda (its count comes with the diagnostics).
   std::size_t size() const override {
     await_step();
@@ -253,7 +257,7 @@ class DeviceBackend final : public Backend {
 
  private:
   int32_t n() const { return int32_t(d_.size()); }
-  GridView grid_view() const { return grid_.view(c_.grid); }
+  GridView grid_view() const { return grid_.view(c_.grid, boundary_.view()); }
 
   // The constants as the kernels read them, uploaded first if another back end bound them last.
   ConstantsRef constants() { return constants_.bind(c_); }
@@ -429,6 +433,7 @@ class DeviceBackend final : public Backend {
   DeviceArrays d_, sorted_;
   QuietTemporaryAllocator temporary_;
   DeviceGrid grid_;
+  DeviceBoundary boundary_;  // static boundary particles (sph.walls = "particles")
   DeviceVector<int32_t> keep_;
   DeviceVector<uint8_t> keep_flag_;
   DeviceVector<double> reduce_a_, reduce_b_;  // the levels of a reduction (src/solvers/reduction.h)

@@ -1,0 +1,59 @@
+// Boundary particles [Akinci et al. 2012, "Versatile rigid-fluid coupling for incompressible SPH"; seed 002,
+// section 4.1]: static particles that sample the walls (sph.walls = "particles"), each with a volume V_b
+// that enters the fluid's sums as the mass Psi_b = rho0_i V_b ([AIA12] eq. 5) of the fluid particle i that
+// reads it. They are sampled once (boundary_particles.cpp) and kept in a dense grid of cells of h over their
+// bounding box, so that a fluid particle finds them in 9 index ranges; far from every wall its cell lies
+// outside that box, or in it with empty ranges.
+//
+// A raw-pointer view (trivially copyable, like ParticleView): the same struct reaches a CUDA kernel, an
+// OpenMP loop or the serial reference through GridView::boundary. n = 0: no boundary particles.
+#pragma once
+
+#include <cstdint>
+
+#include "sph_hd.h"
+#include "vec3.h"
+
+namespace sph {
+
+struct BoundaryView {
+  int32_t n;                // boundary particles
+  const Vec4* pos_volume;   // n: x, y, z [m] and the volume V_b [m^3], sorted by cell
+  const float* friction;    // n: the boundary's viscosity factor, 1 - slip of the shape it samples
+  const int32_t* cell_start;  // nx * ny * nz + 1: first particle of each cell (x fastest), then n
+  Vec3 origin;              // corner of cell (0, 0, 0) [m]
+  float inv_cell;           // 1 / cell size [1/m]; the cell size is at least h
+  int32_t nx, ny, nz;
+};
+
+// Calls f(b, x - x_b, r2, V_b) for every boundary particle b within sqrt(h2) of x (r2 < h2). The 3 x 3 rows of
+// 3 cells around x's cell, each one index range.
+template <class F>
+SPH_HD inline void for_each_boundary(const BoundaryView& bv, Vec3 x, float h2, F&& f) {
+  if (bv.n == 0) return;
+  // In floating point first: a position far outside (or not finite) has no boundary neighbour.
+  const float fx = floorf((x.x - bv.origin.x) * bv.inv_cell), fy = floorf((x.y - bv.origin.y) * bv.inv_cell),
+              fz = floorf((x.z - bv.origin.z) * bv.inv_cell);
+  if (!(fx >= -1.0f && fy >= -1.0f && fz >= -1.0f && fx <= float(bv.nx) && fy <= float(bv.ny) && fz <= float(bv.nz)))
+    return;
+  const int32_t cx = int32_t(fx), cy = int32_t(fy), cz = int32_t(fz);
+  const int32_t x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < bv.nx ? cx + 1 : bv.nx - 1;
+  if (x0 > x1) return;
+  for (int32_t z = cz - 1; z <= cz + 1; ++z) {
+    if (z < 0 || z >= bv.nz) continue;
+    for (int32_t y = cy - 1; y <= cy + 1; ++y) {
+      if (y < 0 || y >= bv.ny) continue;
+      const int32_t row = (z * bv.ny + y) * bv.nx;
+      const int32_t end = bv.cell_start[row + x1 + 1];
+      for (int32_t b = bv.cell_start[row + x0]; b < end; ++b) {
+        const Vec4 pb = bv.pos_volume[b];
+        const Vec3 xb = xyz(pb);
+        const Vec3 xab = x - xb;
+        const float r2 = length2(xab);
+        if (r2 < h2) f(b, xab, r2, pb.w);
+      }
+    }
+  }
+}
+
+}  // namespace sph
