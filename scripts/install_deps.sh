@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the build needs, only those that are missing. Needs root (or sudo).
 set -euo pipefail
-packages=(cmake make g++ pkg-config nlohmann-json3-dev libcli11-dev catch2 libeigen3-dev
+packages=(cmake make g++ pkg-config nlohmann-json3-dev libcli11-dev catch2 libeigen3-dev libtinyobjloader-dev
           libglfw3-dev libglew-dev libimgui-dev libstb-dev xvfb xauth libgl1-mesa-dri python3-matplotlib
           clang libclang-rt-14-dev)
 missing=()

@@ -353,3 +353,17 @@ sph_cli_capped_test(pbf_one_iteration_blows_up
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --set solver=pbf --set pbf.iterations=1
      --set pbf.density_tolerance=1e-7 --set time_step.mode=fixed --set time_step.dt=0.004 -n 30 -q
      --out ${SPH_CLI_OUT}/pbf_one_iteration)
+
+# --- meshes (issue 13): walls of boundary particles only; a missing file or a non-OBJ is named -----------
+sph_cli_test(mesh_needs_boundary_particles
+  --exit 1 --stderr "meshes" --stderr "sph.walls=particles"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/mesh_obstacle.json --set sph.walls=mirror --steps 1 --out ${SPH_CLI_OUT}/mesh_walls)
+sph_cli_test(mesh_missing_file
+  --exit 1 --stderr "meshes.0" --stderr "no_such_cup.obj"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/mesh_obstacle.json --set meshes.0.file=no_such_cup.obj --steps 1 --out ${SPH_CLI_OUT}/mesh_missing)
+sph_cli_test(mesh_not_obj
+  --exit 1 --stderr "meshes.0.file" --stderr "OBJ"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/mesh_obstacle.json --set meshes.0.file=cup.ply --steps 1 --out ${SPH_CLI_OUT}/mesh_ply)
+sph_cli_test(mesh_obstacle_runs
+  --exit 0 --stdout "meshes.0:" --stdout "boundary particles" --file ${SPH_CLI_OUT}/mesh_runs/metrics.csv
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/mesh_obstacle.json --steps 5 --out ${SPH_CLI_OUT}/mesh_runs)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -251,4 +252,83 @@ TEST_CASE("boundary particles: a block hitting a 1 mm plate at 6 m/s stays above
   INFO(sim.steps() << " steps; lowest particle at y = " << lowest << " m (plate top " << p.b.y << " m)");
   CHECK(through == 0);
   CHECK(lowest >= p.b.y);
+}
+
+namespace {
+
+// hydrostatic_tank with walls of boundary particles and a 0.03 m box obstacle at (0.01, 0.02, 0.01): as a
+// box shape, or as tests/data/box_12.obj scaled and moved there.
+sph::Scene tank_with_obstacle(bool as_mesh) {
+  sph::Scene scene = scene_file("hydrostatic_tank.json", {"sph.walls=particles"});
+  if (as_mesh) {
+    sph::MeshSpec m;
+    m.file = std::string(SPH_SOURCE_DIR) + "/tests/data/box_12.obj";
+    m.scale = {0.03, 0.03, 0.03};
+    m.translate = {0.01, 0.02, 0.01};
+    scene.meshes.push_back(m);
+  } else {
+    sph::BoundarySpec box;
+    box.shape = scene.boundaries[0].shape;
+    box.shape.keep_inside = 0;
+    box.shape.a = sph::Vec3{0.01f, 0.02f, 0.01f};
+    box.shape.b = sph::Vec3{0.04f, 0.05f, 0.04f};
+    scene.boundaries.push_back(box);
+  }
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("boundary particles: a box read as 12 triangles from an OBJ file gives the box shape's boundary",
+          "[boundary_particles][mesh]") {
+  const sph::Setup shape = sph::create_setup(tank_with_obstacle(false), 1.0);
+  const sph::Setup mesh = sph::create_setup(tank_with_obstacle(true), 1.0);
+  REQUIRE(mesh.meshes.size() == 1);
+  REQUIRE(mesh.meshes[0].mesh.triangles.size() == 12);
+  // The same fluid: the particles inside the obstacle removed alike.
+  CHECK(mesh.particles.size() == shape.particles.size());
+  const auto sorted = [](const sph::BoundaryParticles& b) {
+    std::vector<sph::Vec4> v = b.pos_volume;
+    std::sort(v.begin(), v.end(), [](const sph::Vec4& p, const sph::Vec4& q) {
+      const auto key = [](const sph::Vec4& a) { return std::make_tuple(std::lround(a.z * 1e5), std::lround(a.y * 1e5), std::lround(a.x * 1e5)); };
+      return key(p) < key(q);
+    });
+    return v;
+  };
+  const std::vector<sph::Vec4> a = sorted(shape.boundary), b = sorted(mesh.boundary);
+  REQUIRE(a.size() == b.size());
+  double worst_x = 0.0, worst_v = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst_x = std::max({worst_x, std::fabs(double(a[i].x - b[i].x)), std::fabs(double(a[i].y - b[i].y)), std::fabs(double(a[i].z - b[i].z))});
+    worst_v = std::max(worst_v, std::fabs(double(a[i].w / b[i].w) - 1.0));
+  }
+  INFO(a.size() << " boundary particles; largest position difference " << worst_x << " m, volume " << worst_v);
+  CHECK(worst_x <= 1e-6);
+  CHECK(worst_v <= 1e-4);
+}
+
+TEST_CASE("meshes: a missing, open or empty OBJ file, or a mesh without boundary particles, is refused by name",
+          "[boundary_particles][mesh]") {
+  const auto refusal = [](const std::string& file, const std::string& walls) {
+    sph::Scene scene = scene_file("hydrostatic_tank.json", {"sph.walls=" + walls});
+    sph::MeshSpec m;
+    m.file = std::string(SPH_SOURCE_DIR) + "/tests/data/" + file;
+    m.scale = {0.03, 0.03, 0.03};
+    scene.meshes.push_back(m);
+    try {
+      (void)sph::create_setup(scene, 1.0);
+    } catch (const sph::SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string missing = refusal("no_such_mesh.obj", "particles");
+  CHECK(missing.find("meshes.0") != std::string::npos);
+  CHECK(missing.find("no_such_mesh.obj") != std::string::npos);
+  const std::string open = refusal("open_box.obj", "particles");
+  CHECK(open.find("meshes.0") != std::string::npos);
+  CHECK(open.find("open") != std::string::npos);
+  const std::string empty = refusal("no_faces.obj", "particles");
+  CHECK(empty.find("no triangle") != std::string::npos);
+  CHECK(refusal("box_12.obj", "particles").empty());
 }

@@ -297,4 +297,16 @@ SPH_HD inline void boundaries_of(const SimConstants& c, const ParticleView& p, i
   }
 }
 
+// The boundary particles' collision (boundary_view.h, collide_boundary_particles) of particle i, a loop of its
+// own after the shapes': in the shapes' loop it made the GPU keep the box tests' small arrays in a stack
+// frame (ptxas, sm_90). h2: the support radius squared [m^2].
+struct BoundaryParticleCollisionFn {
+  BoundaryView b;
+  ParticleView p;
+  float h2;
+  SPH_HD void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) collide_boundary_particles(b, h2, p.pos, p.vel, i);
+  }
+};
+
 }  // namespace sph

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "kernels.h"
+#include "mesh.h"
 #include "setup_checks.h"
 
 namespace sph {
@@ -21,6 +22,7 @@ struct Sample {
   float friction;
   bool keep;   // a boundary particle: in the solid within h of its surface
   bool solid;  // in the solid (false: a virtual point on the fluid's side)
+  int32_t solid_index;  // the shape (0 .. num_shapes - 1) or mesh (num_shapes + m) sampled
 };
 
 // Coordinates of one axis of a box [lo, hi]: inside, the lattice stretched to fit (n = round(L / d) points);
@@ -56,19 +58,60 @@ bool in_solid(const Shape& s, double x, double y, double z) {
   return !inside && !(s.open_top && y >= s.b.y);
 }
 
+// The walls: the scene's shapes (solid index 0 .. num_shapes - 1) and its meshes (num_shapes + m).
+struct Solids {
+  const SimConstants& c;
+  const std::vector<MeshSolid>& meshes;
+};
+
+// A mesh's clearance: positive on the fluid's side (outside an obstacle, inside a container).
+double mesh_clearance(const MeshSolid& m, const Vec3d& p) {
+  const double sd = mesh_signed_distance(m.mesh, MeshPoint{p[0], p[1], p[2]});
+  return m.inside ? -sd : sd;
+}
+
+// Clearance of solid `index` (shape or mesh) at p: positive on the fluid's side.
+double solid_clearance(const Solids& w, int32_t index, const Vec3d& p) {
+  return index < w.c.num_shapes ? boundary_clearance(w.c.shapes[index], p)
+                                : mesh_clearance(w.meshes[std::size_t(index - w.c.num_shapes)], p);
+}
+
+// The surface near a boundary particle at x of solid `index`: the clearance's gradient (central differences
+// of a hundredth of a millimetre) as the normal towards the fluid, and the depth -clearance (boundary_view.h,
+// collide_boundary_particles).
+Vec4 surface_of(const Solids& w, int32_t index, Vec3 x) {
+  const Vec3d p{x.x, x.y, x.z};
+  const double e = 1e-5;
+  double g[3];
+  for (int a = 0; a < 3; ++a) {
+    Vec3d hi = p, lo = p;
+    hi[std::size_t(a)] += e;
+    lo[std::size_t(a)] -= e;
+    g[a] = (solid_clearance(w, index, hi) - solid_clearance(w, index, lo)) / (2.0 * e);
+  }
+  const double len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  const double depth = std::max(0.0, -solid_clearance(w, index, p));
+  if (!(len > 0.0)) return Vec4{0.0f, 0.0f, 0.0f, 0.0f};  // no direction: never pushes (n = 0)
+  return Vec4{float(g[0] / len), float(g[1] / len), float(g[2] / len), float(depth)};
+}
+
 // Whether (x, y, z) lies in the solid of a shape other than shape `index` (absorbing planes have none).
-bool in_other_solid(const SimConstants& c, int32_t index, double x, double y, double z) {
+bool in_other_solid(const Solids& w, int32_t index, double x, double y, double z) {
+  const SimConstants& c = w.c;
   for (int32_t o = 0; o < c.num_shapes; ++o) {
     const Shape& s = c.shapes[o];
     if (o == index || s.absorb) continue;
     if (s.type == ShapeType::Box ? in_solid(s, x, y, z) : boundary_clearance(s, Vec3d{x, y, z}) < 0.0) return true;
   }
+  for (std::size_t m = 0; m < w.meshes.size(); ++m)
+    if (c.num_shapes + int32_t(m) != index && mesh_clearance(w.meshes[m], Vec3d{x, y, z}) < 0.0) return true;
   return false;
 }
 
-void refuse_budget(int32_t index, double d, double count, double max_particles) {
+void refuse_budget(const Solids& w, int32_t index, double d, double count, double max_particles) {
   std::ostringstream os;
-  os << "boundaries." << index << ": sampling its walls with boundary particles at spacing " << d << " m needs about "
+  os << (index < w.c.num_shapes ? "boundaries." + std::to_string(index) : "meshes." + std::to_string(index - w.c.num_shapes))
+     << ": sampling its walls with boundary particles at spacing " << d << " m needs about "
      << count << " points, above the budget of " << max_particles
      << " (limits.max_particles); use a coarser resolution or sph.walls = \"mirror\"";
   throw std::invalid_argument(os.str());
@@ -76,17 +119,17 @@ void refuse_budget(int32_t index, double d, double count, double max_particles) 
 
 // Adds the sample at p of shape `index` whose signed clearance (setup_checks.h: positive on the fluid's
 // side) is cl, when within reach (2 h) of the surface.
-void add_sample(const SimConstants& c, int32_t index, double h, Vec3d p, double cl, std::vector<Sample>& out) {
+void add_sample(const Solids& w, int32_t index, float friction, double h, Vec3d p, double cl, std::vector<Sample>& out) {
   if (!(std::fabs(cl) < 2.0 * h)) return;
   const Vec3 x{float(p[0]), float(p[1]), float(p[2])};
-  const float friction = 1.0f - c.shapes[index].slip;
-  if (cl < 0.0) out.push_back(Sample{x, friction, -cl < h, true});
-  else if (!in_other_solid(c, index, p[0], p[1], p[2])) out.push_back(Sample{x, friction, false, false});
+  if (cl < 0.0) out.push_back(Sample{x, friction, -cl < h, true, index});
+  else if (!in_other_solid(w, index, p[0], p[1], p[2])) out.push_back(Sample{x, friction, false, false, index});
 }
 
 // A plane: layers parallel to it at (j + 1/2) d on both sides, each a square lattice of spacing d in the
 // plane over the domain (grown by 2 h), from the plane's point a.
-void sample_plane(const SimConstants& c, int32_t index, double d, double h, double max_particles, std::vector<Sample>& out) {
+void sample_plane(const Solids& w, int32_t index, double d, double h, double max_particles, std::vector<Sample>& out) {
+  const SimConstants& c = w.c;
   const Shape& s = c.shapes[index];
   const Vec3d n{s.b.x, s.b.y, s.b.z}, a{s.a.x, s.a.y, s.a.z};
   // t1: n x the axis least along n; t2 = n x t1.
@@ -113,22 +156,23 @@ void sample_plane(const SimConstants& c, int32_t index, double d, double h, doub
   const long ku0 = long(std::floor(u0 / d)), ku1 = long(std::ceil(u1 / d)), kv0 = long(std::floor(v0 / d)), kv1 = long(std::ceil(v1 / d));
   const int layers = int(std::ceil(2.0 * h / d));
   const double count = double(ku1 - ku0 + 1) * double(kv1 - kv0 + 1) * 2.0 * layers;
-  if (double(out.size()) + count > max_particles) refuse_budget(index, d, count, max_particles);
+  if (double(out.size()) + count > max_particles) refuse_budget(w, index, d, count, max_particles);
   for (int j = -layers; j < layers; ++j)
     for (long kv = kv0; kv <= kv1; ++kv)
       for (long ku = ku0; ku <= ku1; ++ku) {
-        const double w = (j + 0.5) * d, u = (double(ku) + 0.5) * d, v = (double(kv) + 0.5) * d;
-        const Vec3d p{a[0] + w * n[0] + u * t1[0] + v * t2[0], a[1] + w * n[1] + u * t1[1] + v * t2[1],
-                      a[2] + w * n[2] + u * t1[2] + v * t2[2]};
+        const double depth = (j + 0.5) * d, u = (double(ku) + 0.5) * d, v = (double(kv) + 0.5) * d;
+        const Vec3d p{a[0] + depth * n[0] + u * t1[0] + v * t2[0], a[1] + depth * n[1] + u * t1[1] + v * t2[1],
+                      a[2] + depth * n[2] + u * t1[2] + v * t2[2]};
         if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] || p[2] > hi[2]) continue;
-        add_sample(c, index, h, p, w, out);
+        add_sample(w, index, 1.0f - s.slip, h, p, depth, out);
       }
 }
 
 // A sphere or a quadric: the lattice of spacing d over the shape's reach (a sphere's box grown by 2 h, a
 // quadric's the domain's grown by 2 h), anchored at the domain's origin; the clearance of setup_checks.h
 // sorts each point.
-void sample_curved(const SimConstants& c, int32_t index, double d, double h, double max_particles, std::vector<Sample>& out) {
+void sample_curved(const Solids& w, int32_t index, double d, double h, double max_particles, std::vector<Sample>& out) {
+  const SimConstants& c = w.c;
   const Shape& s = c.shapes[index];
   const GridGeometry& g = c.grid;
   const double o[3] = {g.origin.x, g.origin.y, g.origin.z};
@@ -147,22 +191,49 @@ void sample_curved(const SimConstants& c, int32_t index, double d, double h, dou
     candidates *= double(std::max(0L, k1[i] - k0[i] + 1));
   }
   // Every candidate is tested, most are far from the surface: a generous bound on the work.
-  if (candidates > 50.0 * max_particles) refuse_budget(index, d, candidates, 50.0 * max_particles);
+  if (candidates > 50.0 * max_particles) refuse_budget(w, index, d, candidates, 50.0 * max_particles);
   const std::size_t before = out.size();
   for (long kz = k0[2]; kz <= k1[2]; ++kz)
     for (long ky = k0[1]; ky <= k1[1]; ++ky)
       for (long kx = k0[0]; kx <= k1[0]; ++kx) {
         const Vec3d p{o[0] + (double(kx) + 0.5) * d, o[1] + (double(ky) + 0.5) * d, o[2] + (double(kz) + 0.5) * d};
-        add_sample(c, index, h, p, boundary_clearance(s, p), out);
-        if (double(out.size() - before) > max_particles) refuse_budget(index, d, double(out.size() - before), max_particles);
+        add_sample(w, index, 1.0f - s.slip, h, p, boundary_clearance(s, p), out);
+        if (double(out.size() - before) > max_particles) refuse_budget(w, index, d, double(out.size() - before), max_particles);
+      }
+}
+
+// A mesh: the lattice of spacing d anchored half a spacing inside its bounding box's low corner (a box mesh
+// whose sides are whole multiples of d is then sampled exactly as the box shape), over the box grown by 2 h;
+// the signed distance sorts each point.
+void sample_mesh(const Solids& w, std::size_t m, double d, double h, double max_particles, std::vector<Sample>& out) {
+  const MeshSolid& ms = w.meshes[m];
+  const int32_t index = w.c.num_shapes + int32_t(m);
+  long k0[3], k1[3];
+  double candidates = 1.0;
+  for (int i = 0; i < 3; ++i) {
+    k0[i] = -long(std::ceil(2.0 * h / d)) - 1;
+    k1[i] = long(std::ceil((ms.mesh.hi[std::size_t(i)] - ms.mesh.lo[std::size_t(i)] + 2.0 * h) / d)) + 1;
+    candidates *= double(k1[i] - k0[i] + 1);
+  }
+  if (candidates > 50.0 * max_particles) refuse_budget(w, index, d, candidates, 50.0 * max_particles);
+  const float friction = 1.0f - ms.slip;
+  const std::size_t before = out.size();
+  for (long kz = k0[2]; kz <= k1[2]; ++kz)
+    for (long ky = k0[1]; ky <= k1[1]; ++ky)
+      for (long kx = k0[0]; kx <= k1[0]; ++kx) {
+        const Vec3d p{ms.mesh.lo[0] + (double(kx) + 0.5) * d, ms.mesh.lo[1] + (double(ky) + 0.5) * d,
+                      ms.mesh.lo[2] + (double(kz) + 0.5) * d};
+        add_sample(w, index, friction, h, p, mesh_clearance(ms, p), out);
+        if (double(out.size() - before) > max_particles) refuse_budget(w, index, d, double(out.size() - before), max_particles);
       }
 }
 
 // The samples of box shape s within `layers` spacings of its walls, on both sides: on the solid's side
 // (outside a container, inside an obstacle) the boundary particles, kept within h; on the fluid's side
 // virtual points, which only complete the volumes' sums (and are dropped where another shape's solid is).
-void sample_box(const SimConstants& c, int32_t index, double d, double h, int layers, double max_particles,
+void sample_box(const Solids& w, int32_t index, double d, double h, int layers, double max_particles,
                 std::vector<Sample>& out) {
+  const SimConstants& c = w.c;
   const Shape& s = c.shapes[index];
   const std::vector<double> xs = axis_points(s.a.x, s.b.x, d, layers, true, true);
   const std::vector<double> ys = axis_points(s.a.y, s.b.y, d, layers, true, !(s.keep_inside && s.open_top));
@@ -189,10 +260,10 @@ void sample_box(const SimConstants& c, int32_t index, double d, double h, int la
         if (dist >= reach) continue;
         if (!solid) {
           // Fluid side: a virtual point, unless it lies in another shape's solid (a wall an obstacle stands on).
-          if (!in_other_solid(c, index, x, y, z)) out.push_back(Sample{Vec3{float(x), float(y), float(z)}, friction, false, false});
+          if (!in_other_solid(w, index, x, y, z)) out.push_back(Sample{Vec3{float(x), float(y), float(z)}, friction, false, false, index});
           continue;
         }
-        out.push_back(Sample{Vec3{float(x), float(y), float(z)}, friction, dist < h, true});
+        out.push_back(Sample{Vec3{float(x), float(y), float(z)}, friction, dist < h, true, index});
       }
 }
 
@@ -227,14 +298,16 @@ void build_cells(BoundaryParticles& b, double h) {
   std::vector<int64_t> key(n);
   for (std::size_t i = 0; i < n; ++i) key[i] = cell_of(b.pos_volume[i]);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return key[i] < key[j]; });
-  std::vector<Vec4> pos(n);
+  std::vector<Vec4> pos(n), normal_depth(n);
   std::vector<float> friction(n);
   for (std::size_t i = 0; i < n; ++i) {
     pos[i] = b.pos_volume[order[i]];
     friction[i] = b.friction[order[i]];
+    normal_depth[i] = b.normal_depth[order[i]];
   }
   b.pos_volume.swap(pos);
   b.friction.swap(friction);
+  b.normal_depth.swap(normal_depth);
   const std::size_t cells = std::size_t(b.nx) * std::size_t(b.ny) * std::size_t(b.nz);
   b.cell_start.assign(cells + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++b.cell_start[std::size_t(key[order[i]]) + 1];
@@ -244,12 +317,13 @@ void build_cells(BoundaryParticles& b, double h) {
 }  // namespace
 
 BoundaryView BoundaryParticles::view() const {
-  return BoundaryView{int32_t(pos_volume.size()), pos_volume.data(), friction.data(), cell_start.data(),
+  return BoundaryView{int32_t(pos_volume.size()), pos_volume.data(), friction.data(), normal_depth.data(), cell_start.data(),
                       origin, cell > 0.0f ? 1.0f / cell : 0.0f, nx, ny, nz};
 }
 
-BoundaryParticles sample_boundary_particles(const SimConstants& c, double spacing, double max_particles,
-                                            std::vector<std::string>& notes) {
+BoundaryParticles sample_boundary_particles(const SimConstants& c, const std::vector<MeshSolid>& meshes, double spacing,
+                                            double max_particles, std::vector<std::string>& notes) {
+  const Solids w{c, meshes};
   const double d = spacing, h = c.kernel.h;
   // Points within 2 h of a wall on either side: every point within h of a boundary particle (itself within
   // h of the fluid's side) is in its volume's sum.
@@ -259,20 +333,29 @@ BoundaryParticles sample_boundary_particles(const SimConstants& c, double spacin
     const Shape& s = c.shapes[i];
     if (s.absorb) continue;  // an outflow, not a wall
     const std::size_t before = samples.size();
-    if (s.type == ShapeType::Box) sample_box(c, i, d, h, layers, max_particles, samples);
-    else if (s.type == ShapeType::Plane) sample_plane(c, i, d, h, max_particles, samples);
-    else sample_curved(c, i, d, h, max_particles, samples);
+    if (s.type == ShapeType::Box) sample_box(w, i, d, h, layers, max_particles, samples);
+    else if (s.type == ShapeType::Plane) sample_plane(w, i, d, h, max_particles, samples);
+    else sample_curved(w, i, d, h, max_particles, samples);
     const long kept = long(std::count_if(samples.begin() + std::ptrdiff_t(before), samples.end(), [](const Sample& x) { return x.keep; }));
     notes.push_back("boundaries." + std::to_string(i) + ": " + std::to_string(kept) + " boundary particles");
     if (kept == 0) notes.back() += " (the shape lies outside the domain: no wall there)";
+  }
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const std::size_t before = samples.size();
+    sample_mesh(w, m, d, h, max_particles, samples);
+    const long kept = long(std::count_if(samples.begin() + std::ptrdiff_t(before), samples.end(), [](const Sample& x) { return x.keep; }));
+    notes.push_back("meshes." + std::to_string(m) + ": " + std::to_string(kept) + " boundary particles (" +
+                    std::to_string(meshes[m].mesh.triangles.size()) + " triangles)");
   }
   // Every sample, for the volumes [AIA12] eq. 4.
   BoundaryParticles all;
   all.pos_volume.reserve(samples.size());
   all.friction.reserve(samples.size());
+  all.normal_depth.reserve(samples.size());
   for (const Sample& s : samples) {
     all.pos_volume.push_back(with_w(s.x, s.keep ? 1.0f : 0.0f));  // w: keep, for now
     all.friction.push_back(s.friction);
+    all.normal_depth.push_back(s.keep ? surface_of(w, s.solid_index, s.x) : Vec4{0.0f, 0.0f, 0.0f, 0.0f});
   }
   build_cells(all, h);
   const BoundaryView view = all.view();
@@ -284,6 +367,7 @@ BoundaryParticles sample_boundary_particles(const SimConstants& c, double spacin
                       [&](int32_t, Vec3, float r2, float) { sum += double(poly6(c.kernel, r2)); });
     kept.pos_volume.push_back(with_w(xyz(all.pos_volume[std::size_t(i)]), float(1.0 / sum)));
     kept.friction.push_back(all.friction[std::size_t(i)]);
+    kept.normal_depth.push_back(all.normal_depth[std::size_t(i)]);
   }
   build_cells(kept, h);
   return kept;

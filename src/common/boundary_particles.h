@@ -8,13 +8,22 @@
 #include <vector>
 
 #include "boundary_view.h"
+#include "mesh.h"
 #include "params.h"
 
 namespace sph {
 
+// A closed triangle mesh as a solid (scene key "meshes"): an obstacle, or with `inside` a container.
+struct MeshSolid {
+  TriangleMesh mesh;
+  bool inside = false;
+  float slip = 1.0f;
+};
+
 struct BoundaryParticles {
   std::vector<Vec4> pos_volume;  // x, y, z [m] and V_b [m^3], sorted by cell
   std::vector<float> friction;   // 1 - slip of the sampled shape
+  std::vector<Vec4> normal_depth;  // the surface's normal towards the fluid and the depth below it [m]
   std::vector<int32_t> cell_start;
   Vec3 origin{0.0f, 0.0f, 0.0f};
   float cell = 0.0f;  // cell size [m]
@@ -37,13 +46,16 @@ struct BoundaryParticles {
 // reads rest density; where samplings overlap (an obstacle on the floor) the sums share the volume. Along a
 // wall the lattice is stretched to fit the wall's length exactly (n = round(L / d) points), so a wall's
 // samples line up with the emitters' fill of a box that spans the tank.
+// Meshes (mesh.h): the lattice anchored half a spacing inside the mesh's bounding box, each point sorted by
+// its signed distance; a box given as 12 triangles, with sides whole multiples of d, gives the box shape's
+// sampling.
 // Shapes: box containers (open tops left open) and box obstacles as above; planes in layers parallel to them
 // over the domain; spheres and quadrics on the lattice anchored at the domain's origin, each point sorted by
 // its clearance (setup_checks.h): a curved wall is a staircase of lattice points, smoothed by the volumes.
 // Absorbing planes are outflows and get none. Every shape keeps its penalty response as well, the last
 // line of defence against a leak. `notes` gets lines for the report. Throws std::invalid_argument (naming
 // the shape) when the sampling would exceed max_particles.
-BoundaryParticles sample_boundary_particles(const SimConstants& c, double spacing, double max_particles,
-                                            std::vector<std::string>& notes);
+BoundaryParticles sample_boundary_particles(const SimConstants& c, const std::vector<MeshSolid>& meshes, double spacing,
+                                            double max_particles, std::vector<std::string>& notes);
 
 }  // namespace sph

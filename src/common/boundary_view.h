@@ -20,6 +20,7 @@ struct BoundaryView {
   int32_t n;                // boundary particles
   const Vec4* pos_volume;   // n: x, y, z [m] and the volume V_b [m^3], sorted by cell
   const float* friction;    // n: the boundary's viscosity factor, 1 - slip of the shape it samples
+  const Vec4* normal_depth;  // n: unit normal of the nearest surface, towards the fluid, and the depth below it [m]
   const int32_t* cell_start;  // nx * ny * nz + 1: first particle of each cell (x fastest), then n
   Vec3 origin;              // corner of cell (0, 0, 0) [m]
   float inv_cell;           // 1 / cell size [1/m]; the cell size is at least h
@@ -29,7 +30,7 @@ struct BoundaryView {
 // Calls f(b, x - x_b, r2, V_b) for every boundary particle b within sqrt(h2) of x (r2 < h2). The 3 x 3 rows of
 // 3 cells around x's cell, each one index range.
 template <class F>
-SPH_HD inline void for_each_boundary(const BoundaryView& bv, Vec3 x, float h2, F&& f) {
+SPH_HD_ALWAYS_INLINE void for_each_boundary(const BoundaryView& bv, Vec3 x, float h2, F&& f) {
   if (bv.n == 0) return;
   // In floating point first: a position far outside (or not finite) has no boundary neighbour.
   const float fx = floorf((x.x - bv.origin.x) * bv.inv_cell), fy = floorf((x.y - bv.origin.y) * bv.inv_cell),
@@ -54,6 +55,31 @@ SPH_HD inline void for_each_boundary(const BoundaryView& bv, Vec3 x, float h2, F
       }
     }
   }
+}
+
+// The last line of defence of walls of boundary particles, as the penalty response (boundaries.h) is for the
+// analytic shapes, and the only one of meshes: the boundary particle b nearest to x (the first in the search's
+// order among equals) gives the surface there as the plane at depth_b above x_b along its normal n_b. A
+// particle found behind that plane is put back on it and loses the velocity it had into the wall (v_n < 0).
+// Pressure keeps the fluid about half a spacing off the walls; this catches what an impact drives between the
+// boundary particles, where their repulsion, symmetric about the gap, would no longer push it out.
+SPH_HD_ALWAYS_INLINE void collide_boundary_particles(const BoundaryView& bv, float h2, Vec3* pos, Vec3* vel, int32_t i) {
+  const Vec3 x = pos[i];
+  int32_t nearest = -1;
+  float best = h2;
+  for_each_boundary(bv, x, h2, [&](int32_t b, Vec3, float r2, float) {
+    nearest = r2 < best ? b : nearest;
+    best = r2 < best ? r2 : best;
+  });
+  if (nearest < 0) return;
+  const Vec4 nd = bv.normal_depth[nearest];
+  const Vec3 n = xyz(nd);
+  const float behind = nd.w - dot(n, x - xyz(bv.pos_volume[nearest]));  // > 0: behind the surface
+  if (!(behind > 0.0f)) return;
+  pos[i] = x + behind * n;
+  const Vec3 v = vel[i];
+  const float vn = dot(v, n);
+  if (vn < 0.0f) vel[i] = v - vn * n;
 }
 
 }  // namespace sph

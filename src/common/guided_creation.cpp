@@ -218,6 +218,53 @@ std::string percent_text(double relative) {
 
 // Everything but the memory guard of create_setup. `estimate` holds the particle count known so far, for
 // an out-of-memory message.
+// The scene's meshes, loaded and checked closed; SceneError naming meshes.N and the file otherwise.
+std::vector<MeshSolid> load_meshes(const Scene& scene) {
+  std::vector<MeshSolid> out;
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshSpec& m = scene.meshes[i];
+    const std::string label = scene.source + ": meshes." + std::to_string(i);
+    MeshSolid solid;
+    try {
+      solid.mesh = load_obj_mesh(m.file, MeshPoint{m.scale[0], m.scale[1], m.scale[2]},
+                                 MeshPoint{m.translate[0], m.translate[1], m.translate[2]});
+    } catch (const std::exception& e) {
+      throw SceneError(label + ": " + e.what());
+    }
+    const std::string problem = mesh_closure_problem(solid.mesh);
+    if (!problem.empty())
+      throw SceneError(label + ": " + m.file + ": " + problem +
+                       "; a mesh must bound a solid: closed, every edge shared by two triangles of consistent orientation");
+    solid.inside = m.inside;
+    solid.slip = float(m.slip);
+    out.push_back(std::move(solid));
+  }
+  return out;
+}
+
+// Removes the filled points inside a mesh's solid or closer than kMinWallClearance d to its surface, as
+// remove_blocked_points does for the shapes, with a report line per mesh (SceneError with on_overlap "error").
+void remove_points_in_meshes(const Scene& scene, const std::vector<MeshSolid>& meshes, double spacing,
+                             std::vector<FilledPoint>& points, std::vector<std::string>& report) {
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const MeshSolid& ms = meshes[m];
+    const std::size_t before = points.size();
+    points.erase(std::remove_if(points.begin(), points.end(),
+                                [&](const FilledPoint& p) {
+                                  const double sd = mesh_signed_distance(ms.mesh, MeshPoint{p.pos[0], p.pos[1], p.pos[2]});
+                                  return (ms.inside ? -sd : sd) < kMinWallClearance * spacing;
+                                }),
+                 points.end());
+    const std::size_t removed = before - points.size();
+    if (removed == 0) continue;
+    std::ostringstream os;
+    os << "meshes." << m << ": " << removed << " filled particles lie in its solid or within " << kMinWallClearance
+       << " d of its surface";
+    if (scene.overlap_error) throw SceneError(scene.source + ": " + os.str() + " (\"on_overlap\": \"error\" refuses them)");
+    report.push_back(os.str() + "; removed");
+  }
+}
+
 void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate) {
   // Spacing: given, or particles across the smallest extent of the first emitter (thesis 4.1.4 nClass).
   s.spacing = scene.spacing > 0.0 ? scene.spacing : scene.emitters.front().min_extent() / scene.particles_across;
@@ -242,6 +289,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
   check_incompressible_step(scene, s.spacing);
   report_ignored_settings(scene, s.report);
+  s.meshes = load_meshes(scene);
 
   SimConstants& c = s.constants;
   c.kernel = make_kernel_coeffs(s.h);
@@ -340,6 +388,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     s.adjusted = report_fill(scene, lattice, c, stats, s.report);
     const std::size_t filled = points.size();
     remove_blocked_points(scene, s.spacing, stats, points, s.report);
+    remove_points_in_meshes(scene, s.meshes, s.spacing, points, s.report);
     s.adjusted = s.adjusted || points.size() != filled;
     double mass = 0.0;
     for (const FilledPoint& p : points) {
@@ -365,7 +414,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   // The walls' boundary particles, over the domain the grid now spans (planes and quadrics reach that far).
   if (scene.boundary_particles) {
     try {
-      s.boundary = sample_boundary_particles(c, s.spacing, particle_budget(scene), s.report);
+      s.boundary = sample_boundary_particles(c, s.meshes, s.spacing, particle_budget(scene), s.report);
     } catch (const std::invalid_argument& e) {
       throw SceneError(scene.source + ": sph.walls: " + e.what());
     }

@@ -18,6 +18,7 @@ struct Setup {
   SimConstants constants{};
   ParticleState particles;         // instant emitters plus the jets' prefilled inlets
   BoundaryParticles boundary;      // the walls' boundary particles (sph.walls = "particles"), else empty
+  std::vector<MeshSolid> meshes;   // the scene's meshes, loaded, scaled and placed
   std::vector<JetEmitter> jets;
   double spacing = 0.0;            // d
   double h = 0.0;                  // support radius

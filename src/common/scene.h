@@ -59,6 +59,16 @@ struct BoundarySpec {
   Shape shape{};  // type, coefficients and geometry, ready for SimConstants
 };
 
+// A triangle mesh as a solid (scene key "meshes", issue 13; mesh.h): sampled with boundary particles only,
+// so it needs sph.walls = "particles".
+struct MeshSpec {
+  std::string file;              // OBJ, resolved against the scene file's folder
+  bool inside = false;           // true: a container (fluid inside); false: an obstacle
+  Vec3d scale{1.0, 1.0, 1.0};    // per axis, applied first
+  Vec3d translate{0.0, 0.0, 0.0};  // [m], then
+  double slip = 1.0;             // 1 - the boundary particles' friction factor, as a shape's slip
+};
+
 enum class TimeStepMode { Fixed, Adaptive };
 enum class MassRule { RestDensity, Volume };
 
@@ -96,6 +106,7 @@ struct Scene {
   std::vector<FluidSpec> fluids;
   std::vector<EmitterSpec> emitters;
   std::vector<BoundarySpec> boundaries;
+  std::vector<MeshSpec> meshes;
 
   // Resolution (thesis 4.1.4): either particles across the first emitter's smallest extent, or a spacing.
   int particles_across = 0;

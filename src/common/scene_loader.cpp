@@ -450,7 +450,8 @@ Scene read_scene(const json& root, const std::string& source) {
   s.source = source;
   ObjectReader r(root, source, "");
   r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "solver", "dfsph", "pbf",
-           "integrator", "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state", "on_overlap"});
+           "integrator", "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state", "on_overlap",
+           "meshes"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -488,6 +489,34 @@ Scene read_scene(const json& root, const std::string& source) {
     for (std::size_t i = 0; i < bd.size(); ++i) {
       ObjectReader br(bd[i], source, "boundaries." + std::to_string(i));
       s.boundaries.push_back(read_boundary(br));
+    }
+  }
+
+  if (r.has("meshes")) {
+    const json& ms = r.raw("meshes");
+    if (!ms.is_array()) fail(source, "meshes", "expected a list of mesh objects ({\"file\": \"model.obj\", ...})");
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      ObjectReader mr(ms[i], source, "meshes." + std::to_string(i));
+      mr.allow({"file", "inside", "scale", "translate", "slip"});
+      MeshSpec m;
+      if (!mr.has("file")) mr.missing("file", "is required: the path of an OBJ file, relative to the scene file");
+      const fs::path p = mr.string("file", "");
+      if (p.empty() || p.extension() != ".obj")
+        fail(source, mr.key_path("file"), "expected the path of a Wavefront OBJ file (.obj), not \"" + p.string() + "\"");
+      m.file = (p.is_absolute() ? p : fs::path(source).parent_path() / p).string();
+      m.inside = mr.boolean("inside", false);
+      if (mr.has("scale") && mr.raw("scale").is_number()) {
+        const double k = mr.number("scale", 1.0, 0.0, 1e6, true);
+        m.scale = {k, k, k};
+      } else {
+        m.scale = mr.vec3("scale", m.scale);
+        for (const double k : m.scale)
+          if (!(k > 0.0)) fail(source, mr.key_path("scale"), "expected a positive number or three positive numbers");
+      }
+      m.translate = mr.vec3("translate", m.translate);
+      m.slip = mr.number("slip", 1.0, 0.0, 1.0);
+      mr.finish();
+      s.meshes.push_back(m);
     }
   }
 
@@ -540,6 +569,9 @@ Scene read_scene(const json& root, const std::string& source) {
   }
 
   read_solver(r, s);
+  if (!s.meshes.empty() && !s.boundary_particles)
+    fail(source, "meshes", "triangle meshes are walls of boundary particles only: set \"sph\": {\"walls\": \"particles\"} "
+                           "(--set sph.walls=particles); mirror and penalty walls know the analytic shapes of \"boundaries\"");
 
   s.integrator = r.choice<Integrator>("integrator", s.integrator,
                                       {{"explicit_euler", Integrator::ExplicitEuler},

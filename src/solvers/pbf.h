@@ -175,6 +175,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
     }
     x.for_each(CorrectionFn<C>{x.constants(), g, p});
     x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt});
+    if (g.boundary.n > 0) x.for_each(BoundaryParticleCollisionFn{g.boundary, p, x.host_constants().kernel.h2});
     ++it;
   }
   capped = s.density_tolerance > 0.0f && error > double(s.density_tolerance);
@@ -188,7 +189,11 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
   using C = typename Exec::Constants;
   const PbfConstants& s = x.host_constants().pbf;
   switch (ph) {
-    case Phase::Predict: x.for_each(PredictFn<C>{x.constants(), x.particles(), dt}); return;
+    case Phase::Predict:
+      x.for_each(PredictFn<C>{x.constants(), x.particles(), dt});
+      if (x.grid().boundary.n > 0)
+        x.for_each(BoundaryParticleCollisionFn{x.grid().boundary, x.particles(), x.host_constants().kernel.h2});
+      return;
     case Phase::BuildGrid: x.build_grid(); return;
     case Phase::ConstraintSolve:
       stats.density_iterations = solve(x, dt, stats.density_error, stats.density_capped);
