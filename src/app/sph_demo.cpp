@@ -86,6 +86,8 @@ class Demo {
     scene_index_ = index;
     sim_ = std::move(sim);
     interop_off_ = false;
+    panel_.wall_particles = long(sim_->setup().boundary.size());
+    walls_eye_ = Vec3{0.0f, 0.0f, 0.0f};
     emission_note_ = false;
     const Scene& scene = sim_->scene();
     base_ = sim_->setup().constants;
@@ -157,6 +159,10 @@ class Demo {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const Mat4 view = camera_.view(), proj = camera_.projection(float(w) / float(std::max(h, 1)));
     lines_.draw(view, proj);
+    if (panel_.show_walls && panel_.wall_particles > 0) {
+      upload_walls();
+      walls_.draw(view, proj, radius_, h, panel_.flat_points);
+    }
     particles_.draw(view, proj, radius_, h, panel_.flat_points);
     draw_ui(ps);
     panel_.draw_ms = ms_since(d0);
@@ -168,6 +174,22 @@ class Demo {
     panel_.fps = fps_;
     panel_.realtime_ratio = (sim_->time() - sim_t0) / (frame_ms * 1e-3);
     ++frames_;
+  }
+
+  // The walls' boundary particles whose surface faces the camera (its normal towards the fluid points at
+  // the eye): the back walls, the floor and the near sides of obstacles, not the walls in front of the
+  // fluid. Uploaded again when the camera has moved.
+  void upload_walls() {
+    const Vec3 eye = camera_.eye();
+    if (length(eye - walls_eye_) < 1e-6f) return;
+    walls_eye_ = eye;
+    const BoundaryParticles& walls = sim_->setup().boundary;
+    wall_points_.clear();
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      const Vec3 x = xyz(walls.pos_volume[i]);
+      if (dot(xyz(walls.normal_depth[i]), eye - x) > 0.0f) wall_points_.push_back(x);
+    }
+    walls_.upload_points(wall_points_, Vec3{0.55f, 0.55f, 0.58f});
   }
 
   // Keys that act once per press.
@@ -185,6 +207,7 @@ class Demo {
       case GLFW_KEY_KP_SUBTRACT: panel_.substeps = std::max(1, panel_.substeps / 2); break;
       case GLFW_KEY_C: panel_.colour_mode = (panel_.colour_mode + 1) % int(ColourMode::Count); break;
       case GLFW_KEY_V: panel_.flat_points = !panel_.flat_points; break;
+      case GLFW_KEY_G: panel_.show_walls = !panel_.show_walls; break;
       case GLFW_KEY_P: screenshot_requested_ = true; break;
       case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, 1); break;
       default: break;
@@ -362,6 +385,9 @@ class Demo {
   ParticleState stats_;  // last downloaded state (every frame, or every 30th with interop)
   SimConstants base_{};
   ParticleRenderer particles_;
+  ParticleRenderer walls_;  // the walls' boundary particles (G)
+  std::vector<Vec3> wall_points_;
+  Vec3 walls_eye_{0.0f, 0.0f, 0.0f};  // the camera's eye when walls_ was last uploaded
   SceneLines lines_;
   OrbitCamera camera_;
   PanelModel panel_;

@@ -36,6 +36,18 @@ ColourRange ParticleRenderer::upload(const ParticleState& ps, const SimConstants
   return range;
 }
 
+void ParticleRenderer::upload_points(const std::vector<Vec3>& positions, Vec3 colour) {
+  const std::size_t n = positions.size();
+  colours_.assign(n, colour);
+  count_ = GLsizei(n);
+  reserve(n);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(n * sizeof(Vec3)), positions.data());
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_[1]);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(n * sizeof(Vec3)), colours_.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 void ParticleRenderer::reserve(std::size_t n) {
   if (fits(n)) return;
   capacity_ = std::max<std::size_t>(std::max<std::size_t>(n, 1024), 2 * capacity_);

@@ -25,6 +25,8 @@ class ParticleRenderer {
   // Colours the particles on the host and uploads positions and colours. Returns the colour range used
   // (for the legend).
   ColourRange upload(const ParticleState& ps, const SimConstants& c, ColourMode mode);
+  // Uploads points of one colour (the walls' boundary particles).
+  void upload_points(const std::vector<Vec3>& positions, Vec3 colour);
   void draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat) const;
 
   // For interop: make both VBOs hold at least n particles (growing by doubling; every reallocation

@@ -72,6 +72,10 @@ bool draw_panel(PanelModel& m) {
   const char* modes[] = {"fluid", "speed", "density error", "pressure", "grid cell"};
   changed |= ImGui::Combo("colour (C)", &m.colour_mode, modes, IM_ARRAYSIZE(modes));
   changed |= ImGui::Checkbox("flat points (V)", &m.flat_points);
+  if (m.wall_particles > 0) {
+    const std::string label = "wall particles (G): " + std::to_string(m.wall_particles);
+    changed |= ImGui::Checkbox(label.c_str(), &m.show_walls);
+  }
   legend(m);
   if (ImGui::CollapsingHeader("controls")) {
     ImGui::TextUnformatted(

@@ -21,6 +21,8 @@ struct PanelModel {
   int colour_mode = 0;
   bool paused = false;
   bool flat_points = false;
+  bool show_walls = false;  // draw the walls' boundary particles (sph.walls = "particles")
+  long wall_particles = 0;  // how many there are
   // statistics
   std::string scene, backend, integrator;
   long particles = 0;
