@@ -219,6 +219,8 @@ run() {
     step "frames host = cuda: viscosity_cubes" 60 frames_match viscosity_cubes viscosity_cubes.json --time 0.1 --frames-every 0.02
     step "frames host = cuda: drop_zero_g with XSPH" 60 frames_match drop_xsph drop_zero_g.json --time 0.1 --frames-every 0.02 --set fluids.0.xsph=0.1
     step "frames host = cuda: dam break, DFSPH" 60 frames_match dam_dfsph dam_break.json --time 0.05 --frames-every 0.01 --set solver=dfsph
+    step "frames host = cuda: dam break, boundary particles" 60 frames_match dam_particles dam_break.json --time 0.05 --frames-every 0.01 --set sph.walls=particles
+    step "frames host = cuda: cup mesh, DFSPH" 60 frames_match mesh_dfsph mesh_obstacle.json --time 0.05 --frames-every 0.01 --set solver=dfsph
     step "frames host = cuda: tank, PBF at 4 ms" 60 frames_match tank_pbf hydrostatic_tank.json --time 0.2 --frames-every 0.04 \
          --set solver=pbf --set time_step.mode=fixed --set time_step.dt=0.004
     if command -v compute-sanitizer >/dev/null; then
@@ -228,7 +230,8 @@ run() {
     fi
     step "sph_bench cuda: dam break 16k, 100k, 1M, 4M" 240 "$BUNDLE/bin/default/sph_bench" --backends cuda --scenes "$SRC/scenes" \
          --dam-sizes 20 37 80 --dam-cuda 127 --workload dam_break_20 --workload dam_break_37 --workload dam_break_80 \
-         --workload dam_break_127 --workload solver_wcsph --workload solver_dfsph --workload solver_pbf --out "$WORK/bench"
+         --workload dam_break_127 --workload solver_wcsph --workload solver_dfsph --workload solver_pbf \
+         --workload walls_mirror --workload walls_particles --out "$WORK/bench"
     cp "$WORK/bench/bench.csv" "$RES/" 2>/dev/null
     step "interop probe: cuda writes GL buffers (EGL)" 90 interop_probe
     # Last: nvcc's default fused multiply-adds against the 1e-5 tolerances (issue 11, item 2: may fail).
@@ -236,7 +239,7 @@ run() {
   else
     local s
     for s in "device tests, cuda, bitwise (--fmad=false)" "device tests, cuda, default build (1e-5)" \
-             "frames host = cuda (8 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
+             "frames host = cuda (10 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
              "interop probe: cuda writes GL buffers (EGL)"; do
       skip "$s" "no GPU"
     done
