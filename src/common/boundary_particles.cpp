@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <numeric>
+#include <string>
 #include <sstream>
 #include <stdexcept>
 
@@ -20,8 +20,8 @@ constexpr double kMaxBoundaryCells = 8.0e6;
 struct Sample {
   Vec3 x;
   float friction;
-  bool keep;   // a boundary particle: in the solid within h of its surface
-  bool solid;  // in the solid (false: a virtual point on the fluid's side)
+  bool keep;  // a boundary particle, in the solid within h of its surface; else a point that only completes
+             // the volumes' sums (deeper in the solid, or a virtual point on the fluid's side)
   int32_t solid_index;  // the shape (0 .. num_shapes - 1) or mesh (num_shapes + m) sampled
 };
 
@@ -122,8 +122,8 @@ void refuse_budget(const Solids& w, int32_t index, double d, double count, doubl
 void add_sample(const Solids& w, int32_t index, float friction, double h, Vec3d p, double cl, std::vector<Sample>& out) {
   if (!(std::fabs(cl) < 2.0 * h)) return;
   const Vec3 x{float(p[0]), float(p[1]), float(p[2])};
-  if (cl < 0.0) out.push_back(Sample{x, friction, -cl < h, true, index});
-  else if (!in_other_solid(w, index, p[0], p[1], p[2])) out.push_back(Sample{x, friction, false, false, index});
+  if (cl < 0.0) out.push_back(Sample{x, friction, -cl < h, index});
+  else if (!in_other_solid(w, index, p[0], p[1], p[2])) out.push_back(Sample{x, friction, false, index});
 }
 
 // A plane: layers parallel to it at (j + 1/2) d on both sides, each a square lattice of spacing d in the
@@ -243,13 +243,7 @@ void sample_box(const Solids& w, int32_t index, double d, double h, int layers, 
   const auto core = [&](double lo, double hi) { return std::max(0.0, double(std::lround((hi - lo) / d)) - 2.0 * layers); };
   const double shell = double(xs.size()) * double(ys.size()) * double(zs.size()) -
                        core(s.a.x, s.b.x) * core(s.a.y, s.b.y) * core(s.a.z, s.b.z);
-  if (double(out.size()) + shell > max_particles) {
-    std::ostringstream os;
-    os << "boundaries." << index << ": sampling its walls with boundary particles at spacing " << d << " m needs about "
-       << shell << " points, above the budget of " << max_particles
-       << " (limits.max_particles); use a coarser resolution or sph.walls = \"mirror\"";
-    throw std::invalid_argument(os.str());
-  }
+  if (double(out.size()) + shell > max_particles) refuse_budget(w, index, d, shell, max_particles);
   const float friction = 1.0f - s.slip;
   for (const double z : zs)
     for (const double y : ys)
@@ -260,10 +254,10 @@ void sample_box(const Solids& w, int32_t index, double d, double h, int layers, 
         if (dist >= reach) continue;
         if (!solid) {
           // Fluid side: a virtual point, unless it lies in another shape's solid (a wall an obstacle stands on).
-          if (!in_other_solid(w, index, x, y, z)) out.push_back(Sample{Vec3{float(x), float(y), float(z)}, friction, false, false, index});
+          if (!in_other_solid(w, index, x, y, z)) out.push_back(Sample{Vec3{float(x), float(y), float(z)}, friction, false, index});
           continue;
         }
-        out.push_back(Sample{Vec3{float(x), float(y), float(z)}, friction, dist < h, true, index});
+        out.push_back(Sample{Vec3{float(x), float(y), float(z)}, friction, dist < h, index});
       }
 }
 
