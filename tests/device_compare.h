@@ -143,6 +143,8 @@ class ProbedCpu final : public sph::Backend {
   std::string name() const override { return "cpu"; }
   void upload(const sph::ParticleState& s) override { cpu_.upload(s); }
   void set_boundary(const sph::BoundaryParticles& b) override { cpu_.set_boundary(b); }
+  void set_bodies(const std::vector<sph::RigidBody>& b) override { cpu_.set_bodies(b); }
+  const std::vector<sph::RigidBody>& bodies() const override { return cpu_.bodies(); }
   void initialise_forces() override { cpu_.initialise_forces(); }
   void step(float dt) override {
     for (const sph::Phase p : sph::step_phases(cpu_.constants().solver)) step_phase(p, dt);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "boundary_particles.h"
+#include "rigid_body.h"
 #include "params.h"
 #include "particle_state.h"
 
@@ -120,6 +121,10 @@ class Backend {
   // Replaces the static boundary particles (sph.walls = "particles"; none by default): a copy in the back
   // end's memory, read by every neighbour loop through GridView::boundary.
   virtual void set_boundary(const BoundaryParticles& boundary) = 0;
+  // Replaces the rigid bodies (rigid_body.h; none by default): their particles and state. A WCSPH step moves
+  // the free ones; bodies() gives their state now.
+  virtual void set_bodies(const std::vector<RigidBody>& bodies) = 0;
+  virtual const std::vector<RigidBody>& bodies() const = 0;
   virtual void initialise_forces() = 0;                   // accelerations of the uploaded state, no motion
   virtual void step(float dt) = 0;                        // the phases of step_phases(solver), in order
   // Runs one phase of the solver's step alone, exactly as step(dt) runs it, so that tests can compare back

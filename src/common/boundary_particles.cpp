@@ -310,6 +310,8 @@ void build_cells(BoundaryParticles& b, double h) {
 
 }  // namespace
 
+void regrid_boundary_particles(BoundaryParticles& b, double h) { build_cells(b, h); }
+
 BoundaryView BoundaryParticles::view() const {
   return BoundaryView{int32_t(pos_volume.size()), pos_volume.data(), friction.data(), normal_depth.data(), cell_start.data(),
                       origin, cell > 0.0f ? 1.0f / cell : 0.0f, nx, ny, nz};

@@ -58,4 +58,8 @@ struct BoundaryParticles {
 BoundaryParticles sample_boundary_particles(const SimConstants& c, const std::vector<MeshSolid>& meshes, double spacing,
                                             double max_particles, std::vector<std::string>& notes);
 
+// Sorts b's particles into a new cell grid over their bounding box (cells of at least h), after their
+// positions changed (a rigid body's, taken into its own frame).
+void regrid_boundary_particles(BoundaryParticles& b, double h);
+
 }  // namespace sph

@@ -57,6 +57,38 @@ SPH_HD_ALWAYS_INLINE void for_each_boundary(const BoundaryView& bv, Vec3 x, floa
   }
 }
 
+// A rigid body (issue 13, src/common/rigid_body.h) as the fluid's loops see it: its boundary particles in its
+// own frame, a BoundaryView whose positions are relative to the centre of mass and never change, and its pose
+// and velocity this step. World position of a body particle: centre + R x_local, R = (axis_x axis_y axis_z)
+// (columns); its velocity: velocity + omega x (R x_local).
+struct BodyView {
+  BoundaryView local;
+  Vec3 centre;                  // [m]
+  Vec3 axis_x, axis_y, axis_z;  // the rotation's columns
+  Vec3 velocity;                // [m/s]
+  Vec3 omega;                   // angular velocity [1/s]
+  float reach2;                 // (radius of the body's particles about its centre + h)^2 [m^2]: a quick reject
+};
+
+SPH_HD inline Vec3 body_to_world(const BodyView& b, Vec3 v) { return v.x * b.axis_x + v.y * b.axis_y + v.z * b.axis_z; }
+SPH_HD inline Vec3 world_to_body(const BodyView& b, Vec3 v) { return Vec3{dot(v, b.axis_x), dot(v, b.axis_y), dot(v, b.axis_z)}; }
+
+// Calls f(k, b, x - x_b, r2, V_b, v_b) for every particle b of every body k within sqrt(h2) of x (world
+// frame: x - x_b, and the particle's velocity v_b). In the body's frame through its own grid, so a body needs
+// no grid rebuilt as it moves.
+template <class F>
+SPH_HD inline void for_each_body_particle(const BodyView* bodies, int32_t num_bodies, Vec3 x, float h2, F&& f) {
+  for (int32_t k = 0; k < num_bodies; ++k) {
+    const BodyView& body = bodies[k];
+    const Vec3 rel = x - body.centre;
+    if (!(length2(rel) < body.reach2)) continue;
+    for_each_boundary(body.local, world_to_body(body, rel), h2, [&](int32_t b, Vec3 xab_local, float r2, float volume) {
+      const Vec3 xab = body_to_world(body, xab_local);
+      f(k, b, xab, r2, volume, body.velocity + cross(body.omega, rel - xab));
+    });
+  }
+}
+
 // The last line of defence of walls of boundary particles, as the penalty response (boundaries.h) is for the
 // analytic shapes, and the only one of meshes: the boundary particle b nearest to x (the first in the search's
 // order among equals) gives the surface there as the plane at depth_b above x_b along its normal n_b. A

@@ -45,12 +45,16 @@ SPH_HD inline void density_with(const SimConstants& c, const GridView& grid, con
     const Vec3 vab = kSummation ? Vec3{0.0f, 0.0f, 0.0f} : p.vel_force[a] - mirror_velocity(walls, image, p.vel_force[b]);
     density_pair(c, kSummation, p.pos_mass[b].w, xa - xg, r2, vab, rho, rho_near, drho);
   });
-  // Boundary particles [AIA12] eq. 5: Psi_b = rho0_a V_b in place of a neighbour's mass, at rest.
-  if (grid.boundary.n > 0) {
+  // Boundary particles [AIA12] eq. 5: Psi_b = rho0_a V_b in place of a neighbour's mass, static ones at rest.
+  if (grid.boundary.n > 0 || grid.num_bodies > 0) {
     const float rho0 = c.fluids[p.fluid[a]].rest_density;
     const Vec3 va = kSummation ? Vec3{0.0f, 0.0f, 0.0f} : p.vel_force[a];
     for_each_boundary(grid.boundary, xa, k.h2, [&](int32_t, Vec3 xab, float r2, float volume) {
       density_pair(c, kSummation, rho0 * volume, xab, r2, va, rho, rho_near, drho);
+    });
+    // Rigid bodies' particles: the same, moving with their body (continuity: v_a - v_b).
+    for_each_body_particle(grid.bodies, grid.num_bodies, xa, k.h2, [&](int32_t, int32_t, Vec3 xab, float r2, float volume, Vec3 vb) {
+      density_pair(c, kSummation, rho0 * volume, xab, r2, va - vb, rho, rho_near, drho);
     });
   }
   p.density[a] = kSummation ? rho : p.density[a] + dt * drho;

@@ -137,53 +137,106 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
   acc += s * xab;
 }
 
-// The boundary particles' forces on fluid particle a at xa (boundary_view.h), [AIA12] section 3.2:
-// - pressure: the boundary particle b stands for fluid at rest density, mass Psi_b = rho0_a V_b, with a's
-//   pressure extrapolated hydrostatically to x_b (as the mirror ghosts, mirror_walls.h; SPlisHSPlasH mirrors
-//   P_a unchanged), and P_a, P_b >= 0 so a wall never pulls: the pressure pair term of the form Model::form;
-//   the near pressure mirrored unchanged;
-// - friction [AIA12] eq. 11: the fluid's viscosity terms against a wall at rest, times the wall's factor
-//   1 - slip (0 on a free-slip wall). [m/s^2]
+// A boundary pair ([AIA12] section 3.2): fluid particle a and a boundary or body particle b, which stands for
+// fluid at rest density, mass Psi_b = rho0_a V_b, moving with its solid:
+// - pressure: a's pressure extrapolated hydrostatically to x_b (as the mirror ghosts, mirror_walls.h;
+//   SPlisHSPlasH mirrors P_a unchanged), P_a and P_b at least 0 so a wall never pulls: the pressure pair term
+//   of the form Model::form; the near pressure mirrored unchanged;
+// - friction [AIA12] eq. 11: the fluid's viscosity terms against the solid's velocity v_b, times the solid's
+//   factor 1 - slip (0 on a free-slip wall).
+struct BoundaryPairSides {
+  PairSide fluid, wall;
+  float rho0, inv_rho0;
+};
+
+SPH_HD inline BoundaryPairSides boundary_pair_sides(const PairSide& a) {
+  BoundaryPairSides s{a, a, a.fluid->rest_density, 1.0f / a.fluid->rest_density};
+  s.fluid.pressure = a.pressure > 0.0f ? a.pressure : 0.0f;
+  s.fluid.pressure_rho2 = a.pressure > 0.0f ? a.pressure_rho2 : 0.0f;
+  s.fluid.near_pressure = a.near_pressure > 0.0f ? a.near_pressure : 0.0f;
+  s.fluid.near_pressure_rho2 = a.near_pressure > 0.0f ? a.near_pressure_rho2 : 0.0f;
+  s.wall.rho = s.rho0;
+  s.wall.inv_rho = s.inv_rho0;
+  s.wall.near_pressure = s.fluid.near_pressure;
+  s.wall.near_pressure_rho2 = s.fluid.near_pressure * s.inv_rho0 * s.inv_rho0;
+  return s;
+}
+
+// The acceleration of the fluid particle from boundary particle b at x_a - xab (0 < r2 < h^2), volume V_b,
+// velocity vb, friction factor. [m/s^2]
 template <class Model>
-SPH_HD inline Vec3 boundary_forces(const SimConstants& c, const BoundaryView& bv, const PairSide& a, Vec3 xa) {
+SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides& s, Vec3 xab, float r2, float volume,
+                                        Vec3 vb, float friction) {
   const KernelCoeffs& k = c.kernel;
-  const float rho0 = a.fluid->rest_density, inv_rho0 = 1.0f / rho0;
-  PairSide fluid = a, wall = a;
-  fluid.pressure = a.pressure > 0.0f ? a.pressure : 0.0f;
-  fluid.pressure_rho2 = a.pressure > 0.0f ? a.pressure_rho2 : 0.0f;
-  fluid.near_pressure = a.near_pressure > 0.0f ? a.near_pressure : 0.0f;
-  fluid.near_pressure_rho2 = a.near_pressure > 0.0f ? a.near_pressure_rho2 : 0.0f;
-  wall.vel = Vec3{0.0f, 0.0f, 0.0f};
-  wall.rho = rho0;
-  wall.inv_rho = inv_rho0;
-  wall.near_pressure = fluid.near_pressure;
-  wall.near_pressure_rho2 = fluid.near_pressure * inv_rho0 * inv_rho0;
-  Vec3 acc{0.0f, 0.0f, 0.0f};
-  for_each_boundary(bv, xa, k.h2, [&](int32_t b, Vec3 xab, float r2, float volume) {
-    if (r2 <= 0.0f) return;
-    wall.mass = rho0 * volume;
-    const float r = sqrtf(r2), inv_r = 1.0f / r;
-    float s = 0.0f;
-    if (Model::pressure) {
-      // [Adami et al. 2012] eq. 27 for a wall at rest: P_b = P_a + rho0 g.(x_b - x_a), so a column at rest is
-      // held without extra compression at the floor.
-      const float pb = fluid.pressure - rho0 * dot(c.gravity, xab);
-      const float pw = pb > 0.0f ? pb : 0.0f;
-      s = pressure_pair<Model::form>(wall.mass, fluid.pressure, fluid.pressure_rho2, fluid.inv_rho, pw,
-                                     pw * inv_rho0 * inv_rho0, wall.inv_rho) * spiky_dwdr(k, r) * inv_r;
-      if (Model::near)
-        s += pressure_pair<Model::form>(wall.mass, fluid.near_pressure, fluid.near_pressure_rho2, fluid.inv_rho,
-                                        wall.near_pressure, wall.near_pressure_rho2, wall.inv_rho) * near_dwdr(k, r) * inv_r;
-    }
-    acc += s * xab;
-    const float friction = bv.friction[b];
-    if (friction > 0.0f) {
-      Vec3 viscous{0.0f, 0.0f, 0.0f};
-      pressure_viscosity_pair<NonPressureForces>(c, fluid, wall, xab, r2, fluid.vel, viscous);
-      acc += friction * viscous;
-    }
+  s.wall.mass = s.rho0 * volume;
+  s.wall.vel = vb;
+  const float r = sqrtf(r2), inv_r = 1.0f / r;
+  float f = 0.0f;
+  if (Model::pressure) {
+    // [Adami et al. 2012] eq. 27 for a wall at rest: P_b = P_a + rho0 g.(x_b - x_a), so a column at rest is
+    // held without extra compression at the floor.
+    const float pb = s.fluid.pressure - s.rho0 * dot(c.gravity, xab);
+    const float pw = pb > 0.0f ? pb : 0.0f;
+    f = pressure_pair<Model::form>(s.wall.mass, s.fluid.pressure, s.fluid.pressure_rho2, s.fluid.inv_rho, pw,
+                                   pw * s.inv_rho0 * s.inv_rho0, s.wall.inv_rho) * spiky_dwdr(k, r) * inv_r;
+    if (Model::near)
+      f += pressure_pair<Model::form>(s.wall.mass, s.fluid.near_pressure, s.fluid.near_pressure_rho2, s.fluid.inv_rho,
+                                      s.wall.near_pressure, s.wall.near_pressure_rho2, s.wall.inv_rho) * near_dwdr(k, r) * inv_r;
+  }
+  Vec3 acc = f * xab;
+  if (friction > 0.0f) {
+    Vec3 viscous{0.0f, 0.0f, 0.0f};
+    pressure_viscosity_pair<NonPressureForces>(c, s.fluid, s.wall, xab, r2, s.fluid.vel - vb, viscous);
+    acc += friction * viscous;
+  }
+  return acc;
+}
+
+// The static boundary particles' forces on fluid particle a at xa. [m/s^2]
+template <class Model>
+SPH_HD inline Vec3 boundary_forces(const SimConstants& c, const GridView& grid, const PairSide& a, Vec3 xa) {
+  BoundaryPairSides s = boundary_pair_sides(a);
+  const Vec3 zero{0.0f, 0.0f, 0.0f};
+  Vec3 acc = zero;
+  for_each_boundary(grid.boundary, xa, c.kernel.h2, [&](int32_t b, Vec3 xab, float r2, float volume) {
+    if (r2 > 0.0f) acc += boundary_pair<Model>(c, s, xab, r2, volume, zero, grid.boundary.friction[b]);
   });
   return acc;
+}
+
+// The rigid bodies' forces on fluid particle a at xa: their particles as boundary pairs moving with them. A
+// loop of its own after the forces' (src/solvers/rigid_bodies.h): inside the forces loop the bodies' frames
+// pushed the GPU kernel past its 80 registers into spills (ptxas, sm_90). [m/s^2]
+template <class Model>
+SPH_HD inline Vec3 body_forces(const SimConstants& c, const GridView& grid, const PairSide& a, Vec3 xa) {
+  BoundaryPairSides s = boundary_pair_sides(a);
+  Vec3 acc{0.0f, 0.0f, 0.0f};
+  for_each_body_particle(grid.bodies, grid.num_bodies, xa, c.kernel.h2,
+                         [&](int32_t k, int32_t b, Vec3 xab, float r2, float volume, Vec3 vb) {
+                           if (r2 > 0.0f) acc += boundary_pair<Model>(c, s, xab, r2, volume, vb, grid.bodies[k].local.friction[b]);
+                         });
+  return acc;
+}
+
+// What fluid particle a does to body k: the reaction to the accelerations boundary_forces gives a from the
+// body's particles, force -m_a sum_b a_ab [N] and its torque about the body's centre, sum_b (x_b - c) x
+// (-m_a a_ab) [N m] (the solver sums them over the fluid, src/solvers/rigid_bodies.h).
+template <class Model>
+SPH_HD inline void body_reaction(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a, int32_t body,
+                                 Vec3& force, Vec3& torque) {
+  force = torque = Vec3{0.0f, 0.0f, 0.0f};
+  if (p.age[a] < 0.0f) return;
+  const PairSide side = particle_side(c, p, a);
+  BoundaryPairSides s = boundary_pair_sides(side);
+  const Vec3 xa = xyz(p.pos_mass[a]);
+  const BodyView& bv = grid.bodies[body];
+  const float ma = side.mass;
+  for_each_body_particle(&bv, 1, xa, c.kernel.h2, [&](int32_t, int32_t b, Vec3 xab, float r2, float volume, Vec3 vb) {
+    if (!(r2 > 0.0f)) return;
+    const Vec3 f = -ma * boundary_pair<Model>(c, s, xab, r2, volume, vb, bv.local.friction[b]);
+    force += f;
+    torque += cross(xa - bv.centre - xab, f);
+  });
 }
 
 // The forces on particle a under the model Model (with_force_model picks it once per loop).
@@ -233,7 +286,7 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
     pressure_viscosity_pair<Model>(c, side_a, ghost, xag, r2, va - vg, pair);
     acc += push_only(walls, xg, pair);
   });
-  if (grid.boundary.n > 0) acc += boundary_forces<Model>(c, grid.boundary, side_a, xa);
+  if (grid.boundary.n > 0) acc += boundary_forces<Model>(c, grid, side_a, xa);
   acc += c.gravity;  // external forces, thesis eq. 2.25
   if (c.user_force.strength != 0.0f) acc += user_force_acceleration(c, xa);
   p.acc[a] = acc;

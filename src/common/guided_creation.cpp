@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "setup_budget.h"
+#include "rigid_body_setup.h"
 #include "setup_checks.h"
 
 #include "frame_reader.h"
@@ -265,6 +266,23 @@ void remove_points_in_meshes(const Scene& scene, const std::vector<MeshSolid>& m
   }
 }
 
+// Removes the filled points inside a rigid body or closer than kMinWallClearance d to it, as for the shapes.
+void remove_points_in_bodies(const Scene& scene, double spacing, std::vector<FilledPoint>& points,
+                             std::vector<std::string>& report) {
+  for (std::size_t k = 0; k < scene.bodies.size(); ++k) {
+    const std::size_t before = points.size();
+    points.erase(std::remove_if(points.begin(), points.end(),
+                                [&](const FilledPoint& p) { return body_clearance(scene.bodies[k], p.pos) < kMinWallClearance * spacing; }),
+                 points.end());
+    const std::size_t removed = before - points.size();
+    if (removed == 0) continue;
+    std::ostringstream os;
+    os << "bodies." << k << ": " << removed << " filled particles lie in it or within " << kMinWallClearance << " d of it";
+    if (scene.overlap_error) throw SceneError(scene.source + ": " + os.str() + " (\"on_overlap\": \"error\" refuses them)");
+    report.push_back(os.str() + "; removed");
+  }
+}
+
 void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate) {
   // Spacing: given, or particles across the smallest extent of the first emitter (thesis 4.1.4 nClass).
   s.spacing = scene.spacing > 0.0 ? scene.spacing : scene.emitters.front().min_extent() / scene.particles_across;
@@ -389,6 +407,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     const std::size_t filled = points.size();
     remove_blocked_points(scene, s.spacing, stats, points, s.report);
     remove_points_in_meshes(scene, s.meshes, s.spacing, points, s.report);
+    remove_points_in_bodies(scene, s.spacing, points, s.report);
     s.adjusted = s.adjusted || points.size() != filled;
     double mass = 0.0;
     for (const FilledPoint& p : points) {
@@ -422,6 +441,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     os << s.boundary.size() << " boundary particles in all (sph.walls = \"particles\")";
     s.report.push_back(os.str());
   }
+  s.bodies = make_rigid_bodies(scene, c, s.spacing, particle_budget(scene), s.report);
   s.blowup_speed = fallback_blowup_speed(scene, s.max_speed_of_sound, s.jets);
 }
 

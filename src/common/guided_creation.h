@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "boundary_particles.h"
+#include "rigid_body.h"
 #include "emitters.h"
 #include "particle_state.h"
 #include "scene.h"
@@ -19,6 +20,7 @@ struct Setup {
   ParticleState particles;         // instant emitters plus the jets' prefilled inlets
   BoundaryParticles boundary;      // the walls' boundary particles (sph.walls = "particles"), else empty
   std::vector<MeshSolid> meshes;   // the scene's meshes, loaded, scaled and placed
+  std::vector<RigidBody> bodies;   // the scene's rigid bodies at their start
   std::vector<JetEmitter> jets;
   double spacing = 0.0;            // d
   double h = 0.0;                  // support radius

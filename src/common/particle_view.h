@@ -69,6 +69,8 @@ struct GridView {
   const int32_t* block_count;  // one value: blocks (device memory on the device build)
   int32_t block_capacity;      // blocks [0, block_capacity) have cell_start and block_neighbours entries
   BoundaryView boundary;       // the static boundary particles (boundary_view.h); n = 0 without
+  const BodyView* bodies;      // the rigid bodies this step (boundary_view.h), num_bodies of them
+  int32_t num_bodies;
 };
 
 }  // namespace sph

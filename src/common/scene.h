@@ -59,6 +59,19 @@ struct BoundarySpec {
   Shape shape{};  // type, coefficients and geometry, ready for SimConstants
 };
 
+// A rigid body (scene key "bodies", issue 13; rigid_body.h): a box or a sphere of boundary particles that the
+// fluid pushes and that pushes the fluid (WCSPH, sph.walls = "particles").
+struct BodySpec {
+  bool sphere = false;
+  Vec3d min{}, max{};   // box [m]
+  Vec3d center{};       // sphere [m]
+  double radius = 0.0;  // sphere [m]
+  double density = 0.0; // [kg/m^3]; or
+  double mass = 0.0;    // [kg]: exactly one of the two is given
+  bool free = true;     // "motion": "free" (moved by the fluid and gravity) or "fixed"
+  double slip = 1.0;    // as a shape's: the friction factor of its particles is 1 - slip
+};
+
 // A triangle mesh as a solid (scene key "meshes", issue 13; mesh.h): sampled with boundary particles only,
 // so it needs sph.walls = "particles".
 struct MeshSpec {
@@ -107,6 +120,7 @@ struct Scene {
   std::vector<EmitterSpec> emitters;
   std::vector<BoundarySpec> boundaries;
   std::vector<MeshSpec> meshes;
+  std::vector<BodySpec> bodies;
 
   // Resolution (thesis 4.1.4): either particles across the first emitter's smallest extent, or a spacing.
   int particles_across = 0;

@@ -451,7 +451,7 @@ Scene read_scene(const json& root, const std::string& source) {
   ObjectReader r(root, source, "");
   r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "solver", "dfsph", "pbf",
            "integrator", "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state", "on_overlap",
-           "meshes"});
+           "meshes", "bodies"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -520,6 +520,35 @@ Scene read_scene(const json& root, const std::string& source) {
     }
   }
 
+  if (r.has("bodies")) {
+    const json& bs = r.raw("bodies");
+    if (!bs.is_array()) fail(source, "bodies", "expected a list of body objects ({\"type\": \"box\", ...})");
+    for (std::size_t i = 0; i < bs.size(); ++i) {
+      ObjectReader br(bs[i], source, "bodies." + std::to_string(i));
+      BodySpec b;
+      b.sphere = br.choice<bool>("type", false, {{"box", false}, {"sphere", true}});
+      if (!br.has("type")) br.missing("type", "is required (\"box\" or \"sphere\")");
+      if (b.sphere) {
+        br.allow({"type", "center", "radius", "density", "mass", "motion", "slip"});
+        b.center = br.required_vec3("center");
+        if (!br.has("radius")) br.missing("radius", "is required");
+        b.radius = br.number("radius", 0.0, 0.0, kHuge, true);
+      } else {
+        br.allow({"type", "min", "max", "density", "mass", "motion", "slip"});
+        b.min = br.required_vec3("min");
+        b.max = br.required_vec3("max");
+        check_box(b.min, b.max, source, br.key_path("max"));
+      }
+      if (br.has("density") == br.has("mass")) br.missing("density", "give exactly one of density [kg/m^3] and mass [kg]");
+      b.density = br.number("density", 0.0, 0.0, 1e6, true);
+      b.mass = br.number("mass", 0.0, 0.0, 1e9, true);
+      b.free = br.choice<bool>("motion", true, {{"free", true}, {"fixed", false}});
+      b.slip = br.number("slip", 1.0, 0.0, 1.0);
+      br.finish();
+      s.bodies.push_back(b);
+    }
+  }
+
   if (!r.has("resolution")) r.missing("resolution", "is required: {\"particles_across\": N} or {\"spacing\": metres}");
   {
     ObjectReader rr(r.raw("resolution"), source, "resolution");
@@ -569,6 +598,11 @@ Scene read_scene(const json& root, const std::string& source) {
   }
 
   read_solver(r, s);
+  if (!s.bodies.empty() && !s.boundary_particles)
+    fail(source, "bodies", "rigid bodies are made of boundary particles: set \"sph\": {\"walls\": \"particles\"} (--set sph.walls=particles)");
+  if (!s.bodies.empty() && s.solver != Solver::Wcsph)
+    fail(source, "bodies", "rigid bodies are coupled to the wcsph solver only so far, not to \"" + std::string(solver_name(s.solver)) +
+                           "\" (allowed: \"solver\": \"wcsph\")");
   if (!s.meshes.empty() && !s.boundary_particles)
     fail(source, "meshes", "triangle meshes are walls of boundary particles only: set \"sph\": {\"walls\": \"particles\"} "
                            "(--set sph.walls=particles); mirror and penalty walls know the analytic shapes of \"boundaries\"");

@@ -43,6 +43,7 @@ void SolverTotals::add(const SolverStats& s) {
 Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double run_time, const Frame* restart)
     : scene_(scene), setup_(create_setup(scene, run_time)), backend_(factory(setup_.constants)) {
   backend_->set_boundary(setup_.boundary);
+  backend_->set_bodies(setup_.bodies);
   if (restart) {
     continue_from(*restart);
   } else {
@@ -126,6 +127,9 @@ void Simulation::relax(const BackendFactory& factory) {
   relaxation_.threshold = spec.speed_threshold > 0.0 ? spec.speed_threshold : 1e-3 * setup_.max_speed_of_sound;
   std::unique_ptr<Backend> relaxing = factory(rc);
   relaxing->set_boundary(setup_.boundary);
+  std::vector<RigidBody> held = setup_.bodies;  // relaxation moves the fluid only
+  for (RigidBody& b : held) b.motion = BodyMotion::Fixed;
+  relaxing->set_bodies(held);
   relaxing->upload(setup_.particles);
   relaxing->initialise_forces();
   Diagnostics d = relaxing->diagnose();
@@ -207,6 +211,7 @@ void Simulation::switch_backend(const BackendFactory& factory) {
   const ParticleState state = backend_->download();
   std::unique_ptr<Backend> next = factory(setup_.constants);
   next->set_boundary(setup_.boundary);
+  next->set_bodies(backend_->bodies());
   next->upload(state);
   next->initialise_forces();
   backend_ = std::move(next);

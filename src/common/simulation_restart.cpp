@@ -16,6 +16,8 @@ void Simulation::continue_from(const Frame& frame) {
   auto refuse = [&](const std::string& what) {
     throw SceneError(frame.path + ": cannot continue " + scene_.source + " from this frame: " + what);
   };
+  if (!setup_.bodies.empty())
+    refuse("the scene has rigid bodies (\"bodies\"), whose state the frames do not hold; run it from the start");
   if (info.scene != scene_.name)
     refuse("it was written by the scene \"" + info.scene + "\", not \"" + scene_.name +
            "\" (to start another scene from a frame, use the scene key initial_state)");

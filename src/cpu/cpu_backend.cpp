@@ -44,6 +44,8 @@ struct CpuBackend::Exec {
   }
   void build_grid() { b.build_grid(); }
   void recycle() { b.recycle(); }
+  std::vector<RigidBody>& bodies() { return b.bodies_; }
+  void upload_bodies() { b.upload_bodies(); }
   // The deterministic sum of reduction.h, its groups one after another.
   template <class F>
   double sum(int32_t n, const F& f) {

@@ -18,6 +18,16 @@ class CpuBackend final : public Backend {
   std::string name() const override { return "cpu"; }
   void upload(const ParticleState& state) override { s_ = state; }
   void set_boundary(const BoundaryParticles& boundary) override { boundary_ = boundary; }
+  void set_bodies(const std::vector<RigidBody>& bodies) override {
+    bodies_ = bodies;
+    upload_bodies();
+  }
+  const std::vector<RigidBody>& bodies() const override { return bodies_; }
+  // The bodies' views for the loops, from their state.
+  void upload_bodies() {
+    body_views_.resize(bodies_.size());
+    for (std::size_t k = 0; k < bodies_.size(); ++k) body_views_[k] = bodies_[k].view(bodies_[k].local.view(), c_.kernel.h);
+  }
   void initialise_forces() override;
   void step(float dt) override;
   void step_phase(Phase p, float dt) override;
@@ -45,7 +55,9 @@ class CpuBackend final : public Backend {
                     block_code_.data(),
                     &blocks_,
                     blocks_,  // a table for every block
-                    boundary_.view()};
+                    boundary_.view(),
+                    body_views_.data(),
+                    int32_t(body_views_.size())};
   }
   const SimConstants& constants() const { return c_; }
   ParticleState& state() { return s_; }
@@ -58,6 +70,8 @@ class CpuBackend final : public Backend {
   ParticleState s_;
   ParticleState sorted_;              // reorder target, swapped with s_
   BoundaryParticles boundary_;        // static; read in place
+  std::vector<RigidBody> bodies_;     // their particles read in place
+  std::vector<BodyView> body_views_;
   // The grid (grid_build.h): sorted keys, block of each particle, blocks' first particles and codes, cell
   // tables and neighbours, neighbour lists.
   struct SortRecord {

@@ -145,6 +145,19 @@ class DeviceBackend final : public Backend {
     settle();
     run_phase(name_, "boundary upload", [&] { boundary_.upload(b); });
   }
+  void set_bodies(const std::vector<RigidBody>& bodies) override {
+    settle();
+    run_phase(name_, "bodies upload", [&] {
+      bodies_ = bodies;
+      body_locals_.resize(bodies_.size());
+      for (std::size_t k = 0; k < bodies_.size(); ++k) body_locals_[k].upload(bodies_[k].local);
+      upload_bodies();
+    });
+  }
+  const std::vector<RigidBody>& bodies() const override {
+    await_step();
+    return bodies_;
+  }
   // Waits for the last step's end when it recycled on cuda (its count comes with the diagnostics).
   std::size_t size() const override {
     await_step();
@@ -257,7 +270,16 @@ class DeviceBackend final : public Backend {
 
  private:
   int32_t n() const { return int32_t(d_.size()); }
-  GridView grid_view() const { return grid_.view(c_.grid, boundary_.view()); }
+  GridView grid_view() const {
+    return grid_.view(c_.grid, boundary_.view(), body_views_.empty() ? nullptr : thrust::raw_pointer_cast(body_views_.data()),
+                      int32_t(body_views_.size()));
+  }
+  // The bodies' views (their poses this step, their particles in device memory) to the device.
+  void upload_bodies() {
+    std::vector<BodyView> views(bodies_.size());
+    for (std::size_t k = 0; k < bodies_.size(); ++k) views[k] = bodies_[k].view(body_locals_[k].view(), c_.kernel.h);
+    body_views_.assign(views.begin(), views.end());
+  }
 
   // The constants as the kernels read them, uploaded first if another back end bound them last.
   ConstantsRef constants() { return constants_.bind(c_); }
@@ -350,6 +372,8 @@ class DeviceBackend final : public Backend {
     }
     void build_grid() { b.build_grid(); }
     void recycle() { b.recycle(); }
+    std::vector<RigidBody>& bodies() { return b.bodies_; }
+    void upload_bodies() { b.upload_bodies(); }
     // The deterministic sum of reduction.h, a loop per level; its result is read to the host (on cuda a
     // copy that waits for the work enqueued before it: the iterative solvers' one read per check).
     template <class F>
@@ -434,6 +458,9 @@ class DeviceBackend final : public Backend {
   QuietTemporaryAllocator temporary_;
   DeviceGrid grid_;
   DeviceBoundary boundary_;  // static boundary particles (sph.walls = "particles")
+  std::vector<RigidBody> bodies_;             // the rigid bodies' host state
+  std::vector<DeviceBoundary> body_locals_;   // their particles in device memory
+  DeviceVector<BodyView> body_views_;         // their views this step
   DeviceVector<int32_t> keep_;
   DeviceVector<uint8_t> keep_flag_;
   DeviceVector<double> reduce_a_, reduce_b_;  // the levels of a reduction (src/solvers/reduction.h)

@@ -167,7 +167,7 @@ class DeviceGrid {
     if (list_capacity_ == 0) return;  // no lists: every loop searches
     neighbour_list_.resize(std::size_t(n) * std::size_t(list_capacity_ + kNeighbourListPad));
     neighbour_count_.resize(std::size_t(n));
-    GridView search = view(g, BoundaryView{});
+    GridView search = view(g, BoundaryView{}, nullptr, 0);
     search.neighbour_list = nullptr;
     const float h2 = neighbour_radius2(c);  // h^2, or PBF's wider list radius (neighbour_list.h)
     const auto t0 = std::chrono::steady_clock::now();
@@ -182,7 +182,7 @@ class DeviceGrid {
 #endif
   }
 
-  GridView view(const GridGeometry& g, const BoundaryView& boundary) const {
+  GridView view(const GridGeometry& g, const BoundaryView& boundary, const BodyView* bodies, int32_t num_bodies) const {
     return GridView{g,
                     raw(key_),
                     raw(particle_block_),
@@ -195,7 +195,9 @@ class DeviceGrid {
                     raw(block_code_),
                     block_count_,
                     capacity_,
-                    boundary};
+                    boundary,
+                    bodies,
+                    num_bodies};
   }
 
  private:

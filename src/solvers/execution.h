@@ -23,6 +23,8 @@
 //                                            tables (and on the CPU builds the neighbour lists), grid.h
 //   void recycle();                          drop the particles expired() says have left (params.h),
 //                                            keeping the others; the next build_grid() orders them
+//   std::vector<RigidBody>& bodies();        the rigid bodies' host state (rigid_body.h)
+//   void upload_bodies();                    their poses to the loops' GridView (after they moved)
 //
 // Every back end gives the same bits for the same phases: the functors are the same code, the grid's order
 // is unique, and the only reduction across particles, sum(), has a fixed order.

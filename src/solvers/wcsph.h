@@ -18,6 +18,7 @@
 #include "../common/particle_view.h"
 #include "../common/pressure.h"
 #include "../common/sph_hd.h"
+#include "rigid_bodies.h"
 
 namespace sph {
 namespace wcsph {
@@ -108,7 +109,11 @@ void run_phase(Exec& x, Phase p, float dt) {
       return;
     case Phase::Pressure: x.for_each(PressureFn<C>{x.constants(), x.particles()}); return;
     case Phase::Forces:
-      with_force_model(c, [&](auto model) { x.for_each(ForcesFn<C, decltype(model)>{x.constants(), x.grid(), x.particles()}); });
+      with_force_model(c, [&](auto model) {
+        x.for_each(ForcesFn<C, decltype(model)>{x.constants(), x.grid(), x.particles()});
+        if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, decltype(model)>{x.constants(), x.grid(), x.particles()});
+      });
+      update_bodies(x, dt);  // rigid bodies: the reaction to these forces moves them (rigid_bodies.h)
       return;
     case Phase::Correct: x.for_each(CorrectFn<C>{x.constants(), x.particles(), dt}); return;
     case Phase::Boundaries:

@@ -1,0 +1,112 @@
+#include "rigid_body.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+namespace sph {
+namespace {
+
+Eigen::Vector3d e3(const BodyVector& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
+BodyVector b3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Quaterniond quaternion(const std::array<double, 4>& q) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]); }
+
+// Contact with the walls of box containers, simple and robust: each corner of a box body (a sphere's lowest
+// point towards each wall) found behind a wall is pushed back out (the body moves by the deepest
+// penetration along each wall's normal) and gets an inelastic impulse at that point, j = -v_n /
+// (1/M + n.((I^-1 (r x n)) x r)), so that it stops moving into the wall and the body turns about the contact
+// (a box landing on an edge settles flat under gravity).
+void contact_with_containers(RigidBody& b, const SimConstants& c) {
+  const Eigen::Matrix3d R = quaternion(b.orientation).toRotationMatrix();
+  const Eigen::Matrix3d inv_inertia = R * e3(b.inertia).cwiseInverse().asDiagonal() * R.transpose();
+  std::vector<Eigen::Vector3d> points;  // contact candidates relative to the centre
+  if (b.sphere) {
+    for (int axis = 0; axis < 3; ++axis)
+      for (const double side : {-1.0, 1.0}) points.push_back(side * b.half_extent[0] * Eigen::Vector3d::Unit(axis));
+  } else {
+    for (int k = 0; k < 8; ++k)
+      points.push_back(R * Eigen::Vector3d((k & 1 ? 1 : -1) * b.half_extent[0], (k & 2 ? 1 : -1) * b.half_extent[1],
+                                           (k & 4 ? 1 : -1) * b.half_extent[2]));
+  }
+  Eigen::Vector3d x = e3(b.centre), v = e3(b.velocity), w = e3(b.omega);
+  for (int32_t s = 0; s < c.num_shapes; ++s) {
+    const Shape& shape = c.shapes[s];
+    if (shape.type != ShapeType::Box || !shape.keep_inside) continue;
+    const double lo[3] = {shape.a.x, shape.a.y, shape.a.z}, hi[3] = {shape.b.x, shape.b.y, shape.b.z};
+    for (int axis = 0; axis < 3; ++axis)
+      for (const int side : {0, 1}) {
+        if (side == 1 && axis == 1 && shape.open_top) continue;
+        const Eigen::Vector3d n = (side == 0 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(axis);  // into the tank
+        const double wall = side == 0 ? lo[axis] : hi[axis];
+        double deepest = 0.0;
+        for (const Eigen::Vector3d& r : points) {
+          const double depth = (side == 0 ? wall - (x + r)(axis) : (x + r)(axis) - wall);
+          if (depth <= 0.0) continue;
+          deepest = std::max(deepest, depth);
+          const Eigen::Vector3d vc = v + w.cross(r);
+          const double vn = vc.dot(n);
+          if (vn >= 0.0) continue;
+          const Eigen::Vector3d rn = r.cross(n);
+          const double j = -vn / (1.0 / b.mass + n.dot((inv_inertia * rn).cross(r)));
+          v += (j / b.mass) * n;
+          w += inv_inertia * (j * rn);
+        }
+        if (deepest > 0.0) {
+          x += deepest * n;
+          b.contact = true;
+        }
+      }
+  }
+  b.centre = b3(x);
+  b.velocity = b3(v);
+  b.omega = b3(w);
+}
+
+}  // namespace
+
+BodyView RigidBody::view(const BoundaryView& local_view, float h) const {
+  const Eigen::Matrix3d R = quaternion(orientation).toRotationMatrix();
+  const auto col = [&](int i) { return Vec3{float(R(0, i)), float(R(1, i)), float(R(2, i))}; };
+  const auto f3 = [](const BodyVector& v) { return Vec3{float(v[0]), float(v[1]), float(v[2])}; };
+  const float reach = float(radius) + h;
+  return BodyView{local_view, f3(centre), col(0), col(1), col(2), f3(velocity), f3(omega), reach * reach};
+}
+
+std::vector<Vec3> RigidBody::world_particles() const {
+  const Eigen::Matrix3d R = quaternion(orientation).toRotationMatrix();
+  std::vector<Vec3> out;
+  out.reserve(local.size());
+  for (const Vec4& p : local.pos_volume) {
+    const Eigen::Vector3d x = e3(centre) + R * Eigen::Vector3d(p.x, p.y, p.z);
+    out.push_back(Vec3{float(x.x()), float(x.y()), float(x.z())});
+  }
+  return out;
+}
+
+void advance_body(RigidBody& b, const SimConstants& c, double dt) {
+  b.contact = false;
+  if (b.motion != BodyMotion::Free || !(dt > 0.0)) return;
+  const Eigen::Vector3d g(c.gravity.x, c.gravity.y, c.gravity.z);
+  Eigen::Vector3d v = e3(b.velocity) + dt * (e3(b.force) / b.mass + g);
+  Eigen::Quaterniond q = quaternion(b.orientation);
+  const Eigen::Matrix3d R = q.toRotationMatrix();
+  const Eigen::Matrix3d inertia = R * e3(b.inertia).asDiagonal() * R.transpose();
+  const Eigen::Vector3d L = inertia * e3(b.omega) + dt * e3(b.torque);
+  const Eigen::Vector3d omega = inertia.ldlt().solve(L);
+  // q' = 0.5 [0, omega] q
+  const Eigen::Quaterniond w(0.0, omega.x(), omega.y(), omega.z());
+  Eigen::Quaterniond rate = w * q;
+  q.coeffs() += 0.5 * dt * rate.coeffs();
+  q.normalize();
+  b.orientation = {q.w(), q.x(), q.y(), q.z()};
+  b.velocity = b3(v);
+  b.omega = b3(omega);
+  const Eigen::Vector3d x = e3(b.centre) + dt * v;
+  b.centre = b3(x);
+  contact_with_containers(b, c);
+}
+
+}  // namespace sph

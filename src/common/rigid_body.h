@@ -1,0 +1,53 @@
+// Rigid bodies with two-way coupling (issue 13; thesis sections 3.5.5 and 4.2.4, [AIA12] section 4): a body
+// carries boundary particles, sampled once in its own frame, that take part in the fluid's sums like the
+// walls' (boundary_view.h, BodyView); the fluid's reaction on them is summed deterministically into a force
+// and a torque (src/solvers/rigid_bodies.h), which move the body, whose motion moves its particles.
+// Host code: the state is double precision and advanced on the host, once per step, the same on every back
+// end.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "boundary_particles.h"
+#include "params.h"
+
+namespace sph {
+
+using BodyVector = std::array<double, 3>;
+
+enum class BodyMotion { Fixed, Free };
+
+struct RigidBody {
+  std::string label;          // "bodies.N (box)", for messages
+  BoundaryParticles local;    // its particles relative to the centre of mass, in its own cell grid
+  BodyMotion motion = BodyMotion::Free;
+  double mass = 0.0;          // [kg]
+  BodyVector inertia{};       // principal moments in the body frame (its axes) [kg m^2]
+  double radius = 0.0;        // of its particles about the centre [m]
+  BodyVector half_extent{};   // box: half sides; sphere: the radius three times [m] (contact)
+  bool sphere = false;
+  // State
+  BodyVector centre{}, velocity{}, omega{};
+  std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // unit quaternion (w, x, y, z), body to world
+  // The fluid's last force and torque on it [N], [N m], and whether contact with the walls acted.
+  BodyVector force{}, torque{};
+  bool contact = false;
+
+  // The view the fluid's loops read, with `local` as given (the back end's copy of this body's particles).
+  BodyView view(const BoundaryView& local_view, float h) const;
+  // World positions of its particles (tests, drawing).
+  std::vector<Vec3> world_particles() const;
+  // Linear momentum [kg m/s].
+  BodyVector momentum() const { return {mass * velocity[0], mass * velocity[1], mass * velocity[2]}; }
+};
+
+// One step of a free body: v += dt (F / M + g), the angular momentum L = I_world omega += dt tau, omega from
+// L with the rotated inertia, the orientation by the quaternion rate 0.5 [0, omega] q (normalised), x += dt
+// v (symplectic Euler, the fluid's forces of this step), g the scene's gravity. Then the walls of box
+// containers: corners behind a wall are pushed out and given an inelastic impulse at the contact
+// (rigid_body.cpp). Bodies do not touch each other yet. Fixed bodies do not move.
+void advance_body(RigidBody& b, const SimConstants& c, double dt);
+
+}  // namespace sph

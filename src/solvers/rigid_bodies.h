@@ -1,0 +1,72 @@
+// Rigid bodies' two-way coupling in a step (issue 13; the body's state and integration: src/common/rigid_body.h):
+// the fluid's reaction on each free body summed over the particles in the back end's fixed order (the same
+// bits on every back end), then the body advanced on the host and its new pose handed to the loops.
+// WCSPH only (the forces phase calls update_bodies after the fluid's forces, so the body feels exactly
+// the reaction to what the fluid felt; scenes with bodies under DFSPH or PBF are refused at load).
+#pragma once
+
+#include <cstdint>
+
+#include "../common/forces.h"
+#include "../common/rigid_body.h"
+#include "../common/sph_hd.h"
+
+namespace sph {
+
+// The bodies' forces on fluid particle i (forces.h, body_forces), added to the acceleration the forces loop
+// wrote (inlet particles have none).
+template <class C, class Model>
+struct BodyForcesFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] < 0.0f) return;
+    p.acc[i] += body_forces<Model>(*c, g, particle_side(*c, p, i), xyz(p.pos_mass[i]));
+  }
+};
+
+// Component `component` (0-2: force x, y, z [N]; 3-5: torque [N m]) of particle i's reaction on body `body`
+// (forces.h, body_reaction), for the back end's deterministic sum (Exec::sum).
+template <class C, class Model>
+struct BodyReactionFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  int32_t body;
+  int32_t component;
+  SPH_KERNEL_FN double operator()(int32_t i) const {
+    Vec3 force, torque;
+    body_reaction<Model>(*c, g, p, i, body, force, torque);
+    const Vec3 v = component < 3 ? force : torque;
+    const int32_t k = component % 3;
+    return double(k == 0 ? v.x : k == 1 ? v.y : v.z);
+  }
+};
+
+// The fluid's force and torque on every free body (into RigidBody::force, torque), then one step dt of each
+// (advance_body; dt = 0 at the initial forces: the force is recorded, nothing moves), then the new poses to
+// the loops.
+template <class Exec>
+void update_bodies(Exec& x, float dt) {
+  using C = typename Exec::Constants;
+  std::vector<RigidBody>& bodies = x.bodies();
+  if (bodies.empty()) return;
+  const SimConstants& c = x.host_constants();
+  const int32_t n = x.particles().n;
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    RigidBody& b = bodies[k];
+    if (b.motion != BodyMotion::Free) continue;
+    double value[6];
+    with_force_model(c, [&](auto model) {
+      for (int32_t component = 0; component < 6; ++component)
+        value[component] = x.sum(n, BodyReactionFn<C, decltype(model)>{x.constants(), x.grid(), x.particles(), int32_t(k), component});
+    });
+    b.force = {value[0], value[1], value[2]};
+    b.torque = {value[3], value[4], value[5]};
+    advance_body(b, c, double(dt));
+  }
+  x.upload_bodies();
+}
+
+}  // namespace sph
