@@ -307,13 +307,14 @@ TEST_CASE("boundary particles: a box read as 12 triangles from an OBJ file gives
   CHECK(worst_v <= 1e-4);
 }
 
-TEST_CASE("meshes: a missing, open or empty OBJ file, or a mesh without boundary particles, is refused by name",
+TEST_CASE("meshes: a missing, open, inside-out or empty OBJ file, or a mesh too small to sample, is refused by name",
           "[boundary_particles][mesh]") {
-  const auto refusal = [](const std::string& file, const std::string& walls) {
+  const auto refusal = [](const std::string& file, const std::string& walls, double scale = 0.03) {
     sph::Scene scene = scene_file("hydrostatic_tank.json", {"sph.walls=" + walls});
     sph::MeshSpec m;
     m.file = std::string(SPH_SOURCE_DIR) + "/tests/data/" + file;
-    m.scale = {0.03, 0.03, 0.03};
+    m.scale = {scale, scale, scale};
+    m.translate = {0.01, 0.02, 0.01};
     scene.meshes.push_back(m);
     try {
       (void)sph::create_setup(scene, 1.0);
@@ -330,5 +331,10 @@ TEST_CASE("meshes: a missing, open or empty OBJ file, or a mesh without boundary
   CHECK(open.find("open") != std::string::npos);
   const std::string empty = refusal("no_faces.obj", "particles");
   CHECK(empty.find("no triangle") != std::string::npos);
+  const std::string inverted = refusal("inverted_box.obj", "particles");
+  CHECK(inverted.find("clockwise") != std::string::npos);
+  const std::string tiny = refusal("box_12.obj", "particles", 0.001);  // a millimetre: no lattice point inside
+  CHECK(tiny.find("meshes.0") != std::string::npos);
+  CHECK(tiny.find("no boundary particle") != std::string::npos);
   CHECK(refusal("box_12.obj", "particles").empty());
 }

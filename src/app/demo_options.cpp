@@ -19,10 +19,10 @@ int parse_demo_options(int argc, char** argv, DemoOptions& o) {
   app.add_option("--backend,-b", o.backend, "back end: cpu, host or cuda")->capture_default_str();
   app.add_option("--frames", o.frames, "render this many frames without input, then exit (headless runs)");
   app.add_option("--screenshot", o.screenshot, "with --frames: write the last frame to this PNG");
-  app.add_option("--keys", o.keys, "press these keys, one per frame from the first (space N R [ ] B C V G + -)")
+  app.add_option("--keys", o.keys, "press these keys, one per frame from the first (space N R [ ] B C V G D + -)")
       ->check([](const std::string& k) {
-        return k.find_first_not_of(" NRBCVG[]+-") == std::string::npos ? std::string()
-                                                                          : "allowed keys: space N R [ ] B C V G + -";
+        return k.find_first_not_of(" NRBCVGD[]+-") == std::string::npos ? std::string()
+                                                                           : "allowed keys: space N R [ ] B C V G D + -";
       });
   app.add_option("--width", o.width, "window width")->capture_default_str()->check(CLI::Range(64, 8192));
   app.add_option("--height", o.height, "window height")->capture_default_str()->check(CLI::Range(64, 8192));

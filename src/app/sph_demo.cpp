@@ -110,7 +110,8 @@ class Demo {
     camera_.frame(lo_, hi_);
     camera_.yaw = 0.0f;
     camera_.pitch = 0.35f;
-    lines_.build(base_, lo_, hi_);
+    lines_.build(base_, sim_->setup().meshes, lo_, hi_);
+    lines_.set_bodies(sim_->backend().bodies());
     radius_ = 0.5f * float(sim_->setup().spacing);
     panel_.setup_report = sim_->setup().report;
     panel_.setup_changed = sim_->setup().adjusted;
@@ -158,6 +159,7 @@ class Demo {
     glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const Mat4 view = camera_.view(), proj = camera_.projection(float(w) / float(std::max(h, 1)));
+    if (!sim_->backend().bodies().empty()) lines_.set_bodies(sim_->backend().bodies());
     lines_.draw(view, proj);
     if (panel_.show_walls && panel_.wall_particles > 0) {
       upload_walls();
@@ -192,6 +194,20 @@ class Demo {
     walls_.upload_points(wall_points_, Vec3{0.55f, 0.55f, 0.58f});
   }
 
+  // D: a box of density 500 kg/m^3, 6 spacings wide, dropped from the upper part of the domain, in turn left
+  // of, at and right of its middle (a rigid body: it floats; bodies do not touch each other yet).
+  void drop_box() {
+    const float side = 6.0f * float(sim_->setup().spacing), mid_z = 0.5f * (lo_.z + hi_.z);
+    const float mid_x = 0.5f * (lo_.x + hi_.x) + float(drops_++ % 3 - 1) * 0.25f * (hi_.x - lo_.x);
+    const float top = hi_.y - 0.5f * side;
+    BodySpec b;
+    b.min = {mid_x - 0.5 * side, top - side, mid_z - 0.5 * side};
+    b.max = {mid_x + 0.5 * side, top, mid_z + 0.5 * side};
+    b.density = 500.0;
+    const std::string why = sim_->add_body(b);
+    note(why.empty() ? "dropped a box of density 500 kg/m^3" : "no box dropped: " + why);
+  }
+
   // Keys that act once per press.
   void key(int k, int mods) {
     switch (k) {
@@ -208,6 +224,7 @@ class Demo {
       case GLFW_KEY_C: panel_.colour_mode = (panel_.colour_mode + 1) % int(ColourMode::Count); break;
       case GLFW_KEY_V: panel_.flat_points = !panel_.flat_points; break;
       case GLFW_KEY_G: panel_.show_walls = !panel_.show_walls; break;
+      case GLFW_KEY_D: drop_box(); break;
       case GLFW_KEY_P: screenshot_requested_ = true; break;
       case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, 1); break;
       default: break;
@@ -387,6 +404,7 @@ class Demo {
   ParticleRenderer particles_;
   ParticleRenderer walls_;  // the walls' boundary particles (G)
   std::vector<Vec3> wall_points_;
+  int drops_ = 0;  // boxes dropped with D
   Vec3 walls_eye_{0.0f, 0.0f, 0.0f};  // the camera's eye when walls_ was last uploaded
   SceneLines lines_;
   OrbitCamera camera_;

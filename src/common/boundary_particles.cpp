@@ -340,6 +340,12 @@ BoundaryParticles sample_boundary_particles(const SimConstants& c, const std::ve
     const std::size_t before = samples.size();
     sample_mesh(w, m, d, h, max_particles, samples);
     const long kept = long(std::count_if(samples.begin() + std::ptrdiff_t(before), samples.end(), [](const Sample& x) { return x.keep; }));
+    if (kept == 0) {
+      std::ostringstream os;
+      os << "meshes." << m << ": no boundary particle samples it at spacing " << d
+         << " m: it is thinner than a spacing or lies outside the domain; scale it up or refine the resolution";
+      throw std::invalid_argument(os.str());
+    }
     notes.push_back("meshes." + std::to_string(m) + ": " + std::to_string(kept) + " boundary particles (" +
                     std::to_string(meshes[m].mesh.triangles.size()) + " triangles)");
   }

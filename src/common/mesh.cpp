@@ -132,12 +132,18 @@ std::string mesh_closure_problem(const TriangleMesh& mesh) {
     if (!(norm(n) > 0.0)) return "triangle " + std::to_string(i + 1) + " has zero area";
     for (int k = 0; k < 3; ++k) ++directed[{t[std::size_t(k)], t[std::size_t((k + 1) % 3)]}];
   }
+  double volume6 = 0.0;  // six times the signed volume: positive when the faces turn counter-clockwise outside
+  for (const auto& t : mesh.triangles)
+    volume6 += dot(mesh.vertices[std::size_t(t[0])], cross(mesh.vertices[std::size_t(t[1])], mesh.vertices[std::size_t(t[2])]));
   for (const auto& e : directed) {
     const auto edge = "edge between vertices " + std::to_string(e.first.first + 1) + " and " + std::to_string(e.first.second + 1);
     if (e.second > 1) return edge + " is used " + std::to_string(e.second) + " times in the same direction (not manifold, or faces inconsistently oriented)";
     const auto back = directed.find({e.first.second, e.first.first});
     if (back == directed.end()) return edge + " borders one triangle only (the mesh is open)";
   }
+  if (!(volume6 > 0.0))
+    return "its faces turn clockwise seen from outside (its signed volume is negative): list each face's vertices "
+           "counter-clockwise seen from outside, or reverse them all";
   return "";
 }
 

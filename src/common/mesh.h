@@ -27,8 +27,9 @@ struct TriangleMesh {
 TriangleMesh load_obj_mesh(const std::string& path, const MeshPoint& scale, const MeshPoint& translate);
 
 // The first reason the mesh does not bound a solid, or "" when it does: every edge must be shared by exactly
-// two triangles that run along it in opposite directions (closed, manifold, consistently oriented), and no
-// triangle may be degenerate (zero area).
+// two triangles that run along it in opposite directions (closed, manifold, consistently oriented), no
+// triangle may be degenerate (zero area), and the faces must turn counter-clockwise seen from outside
+// (positive signed volume).
 std::string mesh_closure_problem(const TriangleMesh& mesh);
 
 // Signed distance [m] from p to the mesh's surface: negative inside the solid it bounds (generalized

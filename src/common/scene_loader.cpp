@@ -1,5 +1,6 @@
 // Scene files: JSON with string names for every choice, defaults in code, strict validation. Unknown keys,
 // unknown names, wrong types, non-finite or out-of-range numbers are errors that name the file and the key.
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -501,7 +502,9 @@ Scene read_scene(const json& root, const std::string& source) {
       MeshSpec m;
       if (!mr.has("file")) mr.missing("file", "is required: the path of an OBJ file, relative to the scene file");
       const fs::path p = mr.string("file", "");
-      if (p.empty() || p.extension() != ".obj")
+      std::string extension = p.extension().string();
+      for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+      if (p.empty() || extension != ".obj")
         fail(source, mr.key_path("file"), "expected the path of a Wavefront OBJ file (.obj), not \"" + p.string() + "\"");
       m.file = (p.is_absolute() ? p : fs::path(source).parent_path() / p).string();
       m.inside = mr.boolean("inside", false);

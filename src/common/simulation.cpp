@@ -7,6 +7,8 @@
 
 #include "equation_of_state.h"
 #include "metrics.h"
+#include "rigid_body_setup.h"
+#include "setup_budget.h"
 
 namespace sph {
 
@@ -205,6 +207,24 @@ void Simulation::set_constants(const SimConstants& constants) {
   setup_.blowup_speed = fallback_blowup_speed(scene_, c_max, setup_.jets);
   backend_->set_constants(constants);
   if (gravity_changed || force_released) rebase_energy(backend_->download());
+}
+
+std::string Simulation::add_body(const BodySpec& body) {
+  if (scene_.solver != Solver::Wcsph || !scene_.boundary_particles)
+    return "rigid bodies need the wcsph solver and \"sph\": {\"walls\": \"particles\"}";
+  Scene alone = scene_;
+  alone.bodies = {body};
+  std::vector<std::string> report;
+  try {
+    std::vector<RigidBody> added = make_rigid_bodies(alone, setup_.constants, setup_.spacing, particle_budget(scene_), report);
+    std::vector<RigidBody> bodies = backend_->bodies();
+    added[0].label = "bodies." + std::to_string(bodies.size()) + (body.sphere ? " (sphere)" : " (box)");
+    bodies.push_back(added[0]);
+    backend_->set_bodies(bodies);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 void Simulation::switch_backend(const BackendFactory& factory) {

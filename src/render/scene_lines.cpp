@@ -73,7 +73,7 @@ void SceneLines::line(Vec3 a, Vec3 b, const float* rgba) {
   vertices_.push_back(vb);
 }
 
-void SceneLines::build(const SimConstants& c, Vec3 lo, Vec3 hi) {
+void SceneLines::build(const SimConstants& c, const std::vector<MeshSolid>& meshes, Vec3 lo, Vec3 hi) {
   vertices_.clear();
   const float wall[4] = {0.85f, 0.85f, 0.9f, 1.0f};
   const float obstacle[4] = {0.95f, 0.55f, 0.25f, 1.0f};
@@ -124,6 +124,17 @@ void SceneLines::build(const SimConstants& c, Vec3 lo, Vec3 hi) {
       floor_y = sh.a.y;
     }
   }
+  for (const MeshSolid& m : meshes) {
+    const auto at = [&](int v) {
+      const MeshPoint& p = m.mesh.vertices[std::size_t(v)];
+      return Vec3{float(p[0]), float(p[1]), float(p[2])};
+    };
+    for (const auto& t : m.mesh.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const int a = t[std::size_t(k)], b = t[std::size_t((k + 1) % 3)];
+        if (a < b) line(at(a), at(b), m.inside ? wall : obstacle);  // a closed mesh has each edge both ways
+      }
+  }
   // Floor grid: 20 x 20 lines over the extent.
   const int n = 20;
   for (int i = 0; i <= n; ++i) {
@@ -131,6 +142,40 @@ void SceneLines::build(const SimConstants& c, Vec3 lo, Vec3 hi) {
     line(Vec3{fx, floor_y, lo.z}, Vec3{fx, floor_y, hi.z}, grid);
     line(Vec3{lo.x, floor_y, fz}, Vec3{hi.x, floor_y, fz}, grid);
   }
+  static_count_ = vertices_.size();
+  upload();
+}
+
+void SceneLines::set_bodies(const std::vector<RigidBody>& bodies) {
+  const float colour[4] = {0.95f, 0.8f, 0.2f, 1.0f};
+  vertices_.resize(static_count_);
+  for (const RigidBody& b : bodies) {
+    const BodyView v = b.view(BoundaryView{}, 0.0f);
+    const auto world = [&](Vec3 local) { return v.centre + body_to_world(v, local); };
+    if (b.sphere) {
+      const float r = float(b.half_extent[0]);
+      const int n = 32;
+      for (int axis = 0; axis < 3; ++axis)
+        for (int i = 0; i < n; ++i) {
+          const auto pt = [&](int j) {
+            const float t = 2.0f * kPi * float(j) / n, u = r * std::cos(t), w = r * std::sin(t);
+            return world(axis == 0 ? Vec3{0, u, w} : axis == 1 ? Vec3{u, 0, w} : Vec3{u, w, 0});
+          };
+          line(pt(i), pt(i + 1), colour);
+        }
+      continue;
+    }
+    const float hx = float(b.half_extent[0]), hy = float(b.half_extent[1]), hz = float(b.half_extent[2]);
+    Vec3 corner[8];
+    for (int k = 0; k < 8; ++k) corner[k] = world(Vec3{k & 1 ? hx : -hx, k & 2 ? hy : -hy, k & 4 ? hz : -hz});
+    for (int k = 0; k < 8; ++k)
+      for (const int bit : {1, 2, 4})
+        if (!(k & bit)) line(corner[k], corner[k | bit], colour);
+  }
+  upload();
+}
+
+void SceneLines::upload() {
   glBindBuffer(GL_ARRAY_BUFFER, vbo_);
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices_.size() * sizeof(Vertex)), vertices_.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
