@@ -151,6 +151,11 @@ void print_solver_summary(const Simulation& sim) {
   const Scene& scene = sim.scene();
   const SolverTotals& t = sim.solver_totals();
   std::cout << "solver: " << solver_name(scene.solver) << "\n";
+  // The rigid bodies where the run left them.
+  for (const RigidBody& b : sim.backend().bodies())
+    std::cout << "body: " << b.label << ": centre (" << b.centre[0] << ", " << b.centre[1] << ", " << b.centre[2]
+              << ") m, velocity (" << b.velocity[0] << ", " << b.velocity[1] << ", " << b.velocity[2] << ") m/s, fluid force ("
+              << b.force[0] << ", " << b.force[1] << ", " << b.force[2] << ") N" << (b.contact ? ", touching a wall" : "") << "\n";
   if (scene.solver == Solver::Wcsph || t.steps == 0) return;
   const double steps = double(t.steps);
   const bool dfsph = scene.solver == Solver::Dfsph;

@@ -116,6 +116,7 @@ class Simulation {
   bool energy_check_active() const { return setup_.constants.user_force.strength == 0.0f; }
   TimeStepSpec& time_step() { return scene_.time_step; }  // live edits (the demo)
   Backend& backend() { return *backend_; }
+  const Backend& backend() const { return *backend_; }
   const ParticleState& particles() { return backend_->download(); }
 
   // Live changes between steps (the demo): new constants (same grid), or a new back end that carries on
