@@ -54,5 +54,5 @@ def box():
 
 if __name__ == "__main__":
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-    write(os.path.join(root, "scenes/meshes/cup.obj"), *cup(), "a cup: radius 0.5, height 1, wall 0.15, open at the top (y = 1)")
+    write(os.path.join(root, "scenes/meshes/cup.obj"), *cup(), "a cup: radius 0.5, height 1, wall 0.15; a closed solid whose cavity opens at the top (y = 1)")
     write(os.path.join(root, "tests/data/box_12.obj"), *box(), "the unit cube [0, 1]^3 as 12 triangles")
