@@ -90,25 +90,34 @@ SPH_HD inline void for_each_body_particle(const BodyView* bodies, int32_t num_bo
 }
 
 // The last line of defence of walls of boundary particles, as the penalty response (boundaries.h) is for the
-// analytic shapes, and the only one of meshes: the boundary particle b nearest to x (the first in the search's
-// order among equals) gives the surface there as the plane at depth_b above x_b along its normal n_b. A
-// particle found behind that plane is put back on it and loses the velocity it had into the wall (v_n < 0).
+// analytic shapes, and the only one of meshes. Each boundary particle b describes the surface above it as the
+// plane at depth_b above x_b along its normal n_b. Of the boundary particles within 1.5 times the distance of
+// the nearest one (the nearest's neighbours in its layer), the plane x lies furthest behind decides: where two
+// solids meet (a cup standing on the floor), the nearest particle may be the other solid's, whose surface
+// does not see that x is inside this one; the factor 1.5 keeps out the far face of a wall two spacings thick.
+// A particle behind that plane is put back on it and loses the velocity it had into the wall (v_n < 0).
 // Pressure keeps the fluid about half a spacing off the walls; this catches what an impact drives between the
 // boundary particles, where their repulsion, symmetric about the gap, would no longer push it out.
 SPH_HD_ALWAYS_INLINE void collide_boundary_particles(const BoundaryView& bv, float h2, Vec3* pos, Vec3* vel, int32_t i) {
   const Vec3 x = pos[i];
-  int32_t nearest = -1;
-  float best = h2;
-  for_each_boundary(bv, x, h2, [&](int32_t b, Vec3, float r2, float) {
-    nearest = r2 < best ? b : nearest;
-    best = r2 < best ? r2 : best;
+  float nearest = h2;
+  for_each_boundary(bv, x, h2, [&](int32_t, Vec3, float r2, float) { nearest = r2 < nearest ? r2 : nearest; });
+  if (!(nearest < h2)) return;
+  const float near2 = 2.25f * nearest;
+  int32_t deciding = -1;
+  float deepest = 0.0f;
+  for_each_boundary(bv, x, h2, [&](int32_t b, Vec3 xab, float r2, float) {
+    if (r2 > near2) return;
+    const Vec4 nd = bv.normal_depth[b];
+    const float behind = nd.w - dot(xyz(nd), xab);  // > 0: behind the surface
+    if (behind > deepest) {
+      deepest = behind;
+      deciding = b;
+    }
   });
-  if (nearest < 0) return;
-  const Vec4 nd = bv.normal_depth[nearest];
-  const Vec3 n = xyz(nd);
-  const float behind = nd.w - dot(n, x - xyz(bv.pos_volume[nearest]));  // > 0: behind the surface
-  if (!(behind > 0.0f)) return;
-  pos[i] = x + behind * n;
+  if (deciding < 0) return;
+  const Vec3 n = xyz(bv.normal_depth[deciding]);
+  pos[i] = x + deepest * n;
   const Vec3 v = vel[i];
   const float vn = dot(v, n);
   if (vn < 0.0f) vel[i] = v - vn * n;
