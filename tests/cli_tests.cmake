@@ -367,3 +367,14 @@ sph_cli_test(mesh_not_obj
 sph_cli_test(mesh_obstacle_runs
   --exit 0 --stdout "meshes.0:" --stdout "boundary particles" --file ${SPH_CLI_OUT}/mesh_runs/metrics.csv
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/mesh_obstacle.json --steps 5 --out ${SPH_CLI_OUT}/mesh_runs)
+
+# --- rigid bodies (issue 13): WCSPH only; a prescribed body needs its oscillation, inside the walls -------
+sph_cli_test(bodies_need_wcsph
+  --exit 1 --stderr "bodies" --stderr "wcsph"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json --set solver=dfsph --steps 1 --out ${SPH_CLI_OUT}/bodies_dfsph)
+sph_cli_test(bodies_prescribed_without_oscillation
+  --exit 1 --stderr "bodies.0.oscillation" --stderr "prescribed"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json --set bodies.0.motion=prescribed --steps 1 --out ${SPH_CLI_OUT}/bodies_osc)
+sph_cli_test(bodies_stroke_through_wall
+  --exit 1 --stderr "bodies.0" --stderr "through a wall"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/wave_maker.json --set "bodies.0.oscillation.amplitude=[0.5,0,0]" --steps 1 --out ${SPH_CLI_OUT}/bodies_stroke)

@@ -92,3 +92,23 @@ TEST_CASE("rigid bodies: a free body and the fluid exchange momentum and conserv
   REQUIRE(gained > 0.05 * before[0]);  // the fluid did push the body
   CHECK(drift <= 1e-4 * gained + 1e-6 * scale0);
 }
+
+TEST_CASE("rigid bodies: a prescribed paddle follows its oscillation and does work on the water", "[bodies]") {
+  // scenes/wave_maker.json, coarse: the paddle's centre is start + A sin(2 pi t / T) at every step, whatever
+  // the fluid does, and over its first strokes it pushes the water (the fluid's force against its velocity:
+  // positive work done on the fluid).
+  const sph::Scene scene = scene_file("wave_maker.json", {"resolution.spacing=0.02"});
+  sph::Simulation sim(scene, cpu_factory(), 0.4);
+  const double a = 0.02, period = 0.8, start = 0.035, pi = 3.14159265358979323846;
+  double work = 0.0, worst = 0.0;
+  while (sim.time() < 0.4) {
+    sim.advance();
+    const sph::RigidBody& b = sim.backend().bodies().at(0);
+    worst = std::max(worst, std::fabs(b.centre[0] - (start + a * std::sin(2.0 * pi * b.time / period))));
+    work -= (b.force[0] * b.velocity[0] + b.force[1] * b.velocity[1] + b.force[2] * b.velocity[2]) * sim.last_dt();
+    REQUIRE(std::fabs(b.time - sim.time()) <= 1e-9);
+  }
+  INFO("largest deviation from the prescribed centre " << worst << " m; work done on the water " << work << " J");
+  CHECK(worst <= 1e-12);
+  CHECK(work > 0.0);
+}

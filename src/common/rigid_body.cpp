@@ -88,7 +88,17 @@ std::vector<Vec3> RigidBody::world_particles() const {
 
 void advance_body(RigidBody& b, const SimConstants& c, double dt) {
   b.contact = false;
-  if (b.motion != BodyMotion::Free || !(dt > 0.0)) return;
+  if (!(dt > 0.0)) return;
+  if (b.motion == BodyMotion::Prescribed) {
+    b.time += dt;
+    const double w = 2.0 * 3.14159265358979323846 / b.period;
+    for (std::size_t i = 0; i < 3; ++i) {
+      b.centre[i] = b.start[i] + b.amplitude[i] * std::sin(w * b.time);
+      b.velocity[i] = b.amplitude[i] * w * std::cos(w * b.time);
+    }
+    return;
+  }
+  if (b.motion != BodyMotion::Free) return;
   const Eigen::Vector3d g(c.gravity.x, c.gravity.y, c.gravity.z);
   Eigen::Vector3d v = e3(b.velocity) + dt * (e3(b.force) / b.mass + g);
   Eigen::Quaterniond q = quaternion(b.orientation);

@@ -17,7 +17,7 @@ namespace sph {
 
 using BodyVector = std::array<double, 3>;
 
-enum class BodyMotion { Fixed, Free };
+enum class BodyMotion { Fixed, Free, Prescribed };
 
 struct RigidBody {
   std::string label;          // "bodies.N (box)", for messages
@@ -28,6 +28,10 @@ struct RigidBody {
   double radius = 0.0;        // of its particles about the centre [m]
   BodyVector half_extent{};   // box: half sides; sphere: the radius three times [m] (contact)
   bool sphere = false;
+  // Prescribed motion: centre(t) = start + amplitude sin(2 pi t / period) (a piston wave maker).
+  BodyVector start{}, amplitude{};
+  double period = 0.0;  // [s]
+  double time = 0.0;    // its own clock [s], advanced with every step
   // State
   BodyVector centre{}, velocity{}, omega{};
   std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // unit quaternion (w, x, y, z), body to world
@@ -47,7 +51,8 @@ struct RigidBody {
 // L with the rotated inertia, the orientation by the quaternion rate 0.5 [0, omega] q (normalised), x += dt
 // v (symplectic Euler, the fluid's forces of this step), g the scene's gravity. Then the walls of box
 // containers: corners behind a wall are pushed out and given an inelastic impulse at the contact
-// (rigid_body.cpp). Bodies do not touch each other yet. Fixed bodies do not move.
+// (rigid_body.cpp). Bodies do not touch each other yet. Fixed bodies do not move; prescribed ones follow
+// their oscillation (the fluid's force on them is recorded, not applied).
 void advance_body(RigidBody& b, const SimConstants& c, double dt);
 
 }  // namespace sph

@@ -63,7 +63,9 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     RigidBody b;
     b.label = label;
     b.sphere = spec.sphere;
-    b.motion = spec.free ? BodyMotion::Free : BodyMotion::Fixed;
+    b.motion = spec.prescribed ? BodyMotion::Prescribed : spec.free ? BodyMotion::Free : BodyMotion::Fixed;
+    b.amplitude = spec.amplitude;
+    b.period = spec.period;
     const double pi = 3.14159265358979323846;
     const double ex = hi[0] - lo[0], ey = hi[1] - lo[1], ez = hi[2] - lo[2];
     const double volume = spec.sphere ? 4.0 / 3.0 * pi * spec.radius * spec.radius * spec.radius : ex * ey * ez;
@@ -77,6 +79,19 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
       b.inertia = {b.mass * (ey * ey + ez * ez) / 12.0, b.mass * (ex * ex + ez * ez) / 12.0, b.mass * (ex * ex + ey * ey) / 12.0};
       b.half_extent = {0.5 * ex, 0.5 * ey, 0.5 * ez};
       b.centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+    }
+    b.start = b.centre;
+    if (spec.prescribed) {  // its whole stroke must stay inside the containers
+      Vec3d lo2 = lo, hi2 = hi;
+      for (std::size_t a = 0; a < 3; ++a) lo2[a] -= std::fabs(spec.amplitude[a]), hi2[a] += std::fabs(spec.amplitude[a]);
+      for (int32_t s = 0; s < c.num_shapes; ++s) {
+        const Shape& w = c.shapes[s];
+        if (w.type != ShapeType::Box || !w.keep_inside) continue;
+        const double wl[3] = {w.a.x, w.a.y, w.a.z}, wh[3] = {w.b.x, w.b.y, w.b.z};
+        for (int a = 0; a < 3; ++a)
+          if (lo2[std::size_t(a)] < wl[a] || (hi2[std::size_t(a)] > wh[a] && !(a == 1 && w.open_top)))
+            refuse("its oscillation carries it through a wall of boundaries." + std::to_string(s) + "; lower the amplitude");
+      }
     }
     // Its particles: the body alone as an obstacle (its own volumes), then relative to its centre.
     SimConstants alone = c;
@@ -97,7 +112,7 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     regrid_boundary_particles(b.local, c.kernel.h);
     std::ostringstream os;
     os << label << ": " << b.local.size() << " boundary particles, mass " << b.mass << " kg, "
-       << (spec.free ? "free" : "fixed");
+       << (spec.prescribed ? "prescribed" : spec.free ? "free" : "fixed");
     report.push_back(os.str());
     out.push_back(std::move(b));
   }

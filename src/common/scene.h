@@ -68,7 +68,10 @@ struct BodySpec {
   double radius = 0.0;  // sphere [m]
   double density = 0.0; // [kg/m^3]; or
   double mass = 0.0;    // [kg]: exactly one of the two is given
-  bool free = true;     // "motion": "free" (moved by the fluid and gravity) or "fixed"
+  bool free = true;     // "motion": "free" (moved by the fluid and gravity), "fixed" or "prescribed"
+  bool prescribed = false;
+  Vec3d amplitude{};    // prescribed: centre(t) = start + amplitude sin(2 pi t / period) [m]
+  double period = 0.0;  // [s]
   double slip = 1.0;    // as a shape's: the friction factor of its particles is 1 - slip
 };
 

@@ -532,12 +532,12 @@ Scene read_scene(const json& root, const std::string& source) {
       b.sphere = br.choice<bool>("type", false, {{"box", false}, {"sphere", true}});
       if (!br.has("type")) br.missing("type", "is required (\"box\" or \"sphere\")");
       if (b.sphere) {
-        br.allow({"type", "center", "radius", "density", "mass", "motion", "slip"});
+        br.allow({"type", "center", "radius", "density", "mass", "motion", "slip", "oscillation"});
         b.center = br.required_vec3("center");
         if (!br.has("radius")) br.missing("radius", "is required");
         b.radius = br.number("radius", 0.0, 0.0, kHuge, true);
       } else {
-        br.allow({"type", "min", "max", "density", "mass", "motion", "slip"});
+        br.allow({"type", "min", "max", "density", "mass", "motion", "slip", "oscillation"});
         b.min = br.required_vec3("min");
         b.max = br.required_vec3("max");
         check_box(b.min, b.max, source, br.key_path("max"));
@@ -545,7 +545,19 @@ Scene read_scene(const json& root, const std::string& source) {
       if (br.has("density") == br.has("mass")) br.missing("density", "give exactly one of density [kg/m^3] and mass [kg]");
       b.density = br.number("density", 0.0, 0.0, 1e6, true);
       b.mass = br.number("mass", 0.0, 0.0, 1e9, true);
-      b.free = br.choice<bool>("motion", true, {{"free", true}, {"fixed", false}});
+      const int motion = br.choice<int>("motion", 0, {{"free", 0}, {"fixed", 1}, {"prescribed", 2}});
+      b.free = motion == 0;
+      b.prescribed = motion == 2;
+      if (b.prescribed != br.has("oscillation"))
+        br.missing("oscillation", "goes with \"motion\": \"prescribed\" and only with it: {\"amplitude\": [x, y, z] (m), \"period\": s}");
+      if (b.prescribed) {
+        ObjectReader orr(br.raw("oscillation"), source, br.key_path("oscillation"));
+        orr.allow({"amplitude", "period"});
+        b.amplitude = orr.required_vec3("amplitude");
+        if (!orr.has("period")) orr.missing("period", "is required (seconds)");
+        b.period = orr.number("period", 1.0, 0.0, 1e6, true);
+        orr.finish();
+      }
       b.slip = br.number("slip", 1.0, 0.0, 1.0);
       br.finish();
       s.bodies.push_back(b);

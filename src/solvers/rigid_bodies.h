@@ -44,9 +44,9 @@ struct BodyReactionFn {
   }
 };
 
-// The fluid's force and torque on every free body (into RigidBody::force, torque), then one step dt of each
-// (advance_body; dt = 0 at the initial forces: the force is recorded, nothing moves), then the new poses to
-// the loops.
+// The fluid's force and torque on every moving body (into RigidBody::force, torque), then one step dt of
+// each (advance_body: a free body by them, a prescribed one by its clock; dt = 0 at the initial forces: the
+// force is recorded, nothing moves), then the new poses to the loops.
 template <class Exec>
 void update_bodies(Exec& x, float dt) {
   using C = typename Exec::Constants;
@@ -56,7 +56,7 @@ void update_bodies(Exec& x, float dt) {
   const int32_t n = x.particles().n;
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     RigidBody& b = bodies[k];
-    if (b.motion != BodyMotion::Free) continue;
+    if (b.motion == BodyMotion::Fixed) continue;
     double value[6];
     with_force_model(c, [&](auto model) {
       for (int32_t component = 0; component < 6; ++component)
