@@ -297,15 +297,15 @@ SPH_HD inline void boundaries_of(const SimConstants& c, const ParticleView& p, i
   }
 }
 
-// The boundary particles' collision (boundary_view.h, collide_boundary_particles) of particle i, a loop of its
-// own after the shapes': in the shapes' loop it made the GPU keep the box tests' small arrays in a stack
-// frame (ptxas, sm_90). h2: the support radius squared [m^2].
+// The boundary particles' and the rigid bodies' collision (boundary_view.h, collide_boundary_particles) of
+// particle i, a loop of its own after the shapes': in the shapes' loop it made the GPU keep the box tests'
+// small arrays in a stack frame (ptxas, sm_90). h2: the support radius squared [m^2].
 struct BoundaryParticleCollisionFn {
-  BoundaryView b;
+  GridView g;
   ParticleView p;
   float h2;
   SPH_HD void operator()(int32_t i) const {
-    if (p.age[i] >= 0.0f) collide_boundary_particles(b, h2, p.pos, p.vel, i);
+    if (p.age[i] >= 0.0f) collide_boundary_particles(g.boundary, g.bodies, g.num_bodies, h2, p.pos, p.vel, i);
   }
 };
 

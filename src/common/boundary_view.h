@@ -90,37 +90,65 @@ SPH_HD inline void for_each_body_particle(const BodyView* bodies, int32_t num_bo
 }
 
 // The last line of defence of walls of boundary particles, as the penalty response (boundaries.h) is for the
-// analytic shapes, and the only one of meshes. Each boundary particle b describes the surface above it as the
-// plane at depth_b above x_b along its normal n_b. Of the boundary particles within 1.5 times the distance of
-// the nearest one (the nearest's neighbours in its layer), the plane x lies furthest behind decides: where two
-// solids meet (a cup standing on the floor), the nearest particle may be the other solid's, whose surface
-// does not see that x is inside this one; the factor 1.5 keeps out the far face of a wall two spacings thick.
-// A particle behind that plane is put back on it and loses the velocity it had into the wall (v_n < 0).
-// Pressure keeps the fluid about half a spacing off the walls; this catches what an impact drives between the
-// boundary particles, where their repulsion, symmetric about the gap, would no longer push it out.
-SPH_HD_ALWAYS_INLINE void collide_boundary_particles(const BoundaryView& bv, float h2, Vec3* pos, Vec3* vel, int32_t i) {
-  const Vec3 x = pos[i];
+// analytic shapes, and the only one of meshes and rigid bodies. Each boundary particle b describes the
+// surface above it as the plane at depth_b above x_b along its normal n_b. A point counts as inside when it
+// lies behind the plane of every boundary particle within 1.5 times the distance of the nearest one (the
+// nearest's neighbours in its layer): near a convex edge the planes of both faces must agree, so a fluid
+// particle beside a box, below the plane of its bottom face, is not taken for one inside it (deciding by the
+// deepest plane did that, and flung water off a floating box). It is then moved out by the smallest of those
+// depths, along that plane's normal, and loses the velocity it had into the wall. Where two solids meet
+// (a cup standing on the floor) the floor's planes may overrule the cup's, and a particle can stay inside
+// the cup's base (results.md). Pressure keeps the fluid about half a spacing off the walls; this catches what
+// an impact drives between the boundary particles, where their repulsion, symmetric about the gap, would
+// no longer push it out.
+
+// The deciding boundary particle of bv for a point x (in bv's frame): the one whose plane x lies least far
+// behind, when x lies behind every near plane; else -1. `behind` gets that depth.
+SPH_HD_ALWAYS_INLINE int32_t deepest_plane(const BoundaryView& bv, Vec3 x, float h2, float& behind) {
   float nearest = h2;
   for_each_boundary(bv, x, h2, [&](int32_t, Vec3, float r2, float) { nearest = r2 < nearest ? r2 : nearest; });
-  if (!(nearest < h2)) return;
+  behind = 0.0f;
+  if (!(nearest < h2)) return -1;
   const float near2 = 2.25f * nearest;
   int32_t deciding = -1;
-  float deepest = 0.0f;
+  float least = h2;  // larger than any depth
   for_each_boundary(bv, x, h2, [&](int32_t b, Vec3 xab, float r2, float) {
     if (r2 > near2) return;
     const Vec4 nd = bv.normal_depth[b];
-    const float behind = nd.w - dot(xyz(nd), xab);  // > 0: behind the surface
-    if (behind > deepest) {
-      deepest = behind;
+    const float depth = nd.w - dot(xyz(nd), xab);  // > 0: behind the surface
+    if (depth < least) {
+      least = depth;
       deciding = b;
     }
   });
-  if (deciding < 0) return;
-  const Vec3 n = xyz(bv.normal_depth[deciding]);
-  pos[i] = x + deepest * n;
-  const Vec3 v = vel[i];
-  const float vn = dot(v, n);
-  if (vn < 0.0f) vel[i] = v - vn * n;
+  if (!(least > 0.0f)) return -1;
+  behind = least;
+  return deciding;
+}
+
+// Particle i against the static boundary particles, then against each rigid body's (in the body's frame;
+// there the position only).
+SPH_HD_ALWAYS_INLINE void collide_boundary_particles(const BoundaryView& bv, const BodyView* bodies, int32_t num_bodies, float h2,
+                                                     Vec3* pos, Vec3* vel, int32_t i) {
+  float behind = 0.0f;
+  const int32_t b = bv.n > 0 ? deepest_plane(bv, pos[i], h2, behind) : -1;
+  if (b >= 0) {
+    const Vec3 n = xyz(bv.normal_depth[b]);
+    pos[i] = pos[i] + behind * n;
+    const Vec3 v = vel[i];
+    const float vn = dot(v, n);
+    if (vn < 0.0f) vel[i] = v - vn * n;
+  }
+  for (int32_t k = 0; k < num_bodies; ++k) {
+    const BodyView& body = bodies[k];
+    const Vec3 rel = pos[i] - body.centre;
+    if (!(length2(rel) < body.reach2)) continue;
+    const int32_t c = deepest_plane(body.local, world_to_body(body, rel), h2, behind);
+    if (c < 0) continue;
+    // Only the position: a velocity taken away here would be momentum the body never received (the
+    // fluid's push on a body is its pressure, summed as the reaction, src/solvers/rigid_bodies.h).
+    pos[i] = pos[i] + behind * body_to_world(body, xyz(body.local.normal_depth[c]));
+  }
 }
 
 }  // namespace sph

@@ -210,7 +210,8 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
     case Phase::Correct: x.for_each(AdvectFn<C>{x.constants(), x.particles(), dt}); return;
     case Phase::Boundaries:
       if (c.num_shapes > 0) x.for_each(wcsph::BoundariesFn<C>{x.constants(), x.particles(), dt});
-      if (x.grid().boundary.n > 0) x.for_each(BoundaryParticleCollisionFn{x.grid().boundary, x.particles(), c.kernel.h2});
+      if (x.grid().boundary.n > 0 || x.grid().num_bodies > 0)
+        x.for_each(BoundaryParticleCollisionFn{x.grid(), x.particles(), c.kernel.h2});
       return;
     case Phase::BuildGrid: x.build_grid(); return;
     case Phase::Density: x.for_each(DensityAlphaFn<C>{x.constants(), x.grid(), x.particles()}); return;

@@ -175,7 +175,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
     }
     x.for_each(CorrectionFn<C>{x.constants(), g, p});
     x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt});
-    if (g.boundary.n > 0) x.for_each(BoundaryParticleCollisionFn{g.boundary, p, x.host_constants().kernel.h2});
+    if (g.boundary.n > 0) x.for_each(BoundaryParticleCollisionFn{g, p, x.host_constants().kernel.h2});
     ++it;
   }
   capped = s.density_tolerance > 0.0f && error > double(s.density_tolerance);
@@ -192,7 +192,7 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
     case Phase::Predict:
       x.for_each(PredictFn<C>{x.constants(), x.particles(), dt});
       if (x.grid().boundary.n > 0)
-        x.for_each(BoundaryParticleCollisionFn{x.grid().boundary, x.particles(), x.host_constants().kernel.h2});
+        x.for_each(BoundaryParticleCollisionFn{x.grid(), x.particles(), x.host_constants().kernel.h2});
       return;
     case Phase::BuildGrid: x.build_grid(); return;
     case Phase::ConstraintSolve:

@@ -118,7 +118,8 @@ void run_phase(Exec& x, Phase p, float dt) {
     case Phase::Correct: x.for_each(CorrectFn<C>{x.constants(), x.particles(), dt}); return;
     case Phase::Boundaries:
       if (c.num_shapes > 0) x.for_each(BoundariesFn<C>{x.constants(), x.particles(), dt});
-      if (x.grid().boundary.n > 0) x.for_each(BoundaryParticleCollisionFn{x.grid().boundary, x.particles(), c.kernel.h2});
+      if (x.grid().boundary.n > 0 || x.grid().num_bodies > 0)
+        x.for_each(BoundaryParticleCollisionFn{x.grid(), x.particles(), c.kernel.h2});
       return;
     case Phase::Recycle: x.recycle(); return;  // particles past their lifetime or absorbed leave
     default: return;  // not a phase of a WCSPH step: the back ends refuse it before
