@@ -32,6 +32,18 @@ void bounds(const BodySpec& b, Vec3d& lo, Vec3d& hi) {
   }
 }
 
+// The first box container whose walls the box [lo, hi] crosses (not through an open top), or -1.
+int32_t crossed_container(const SimConstants& c, const Vec3d& lo, const Vec3d& hi) {
+  for (int32_t s = 0; s < c.num_shapes; ++s) {
+    const Shape& w = c.shapes[s];
+    if (w.type != ShapeType::Box || !w.keep_inside) continue;
+    const double wl[3] = {w.a.x, w.a.y, w.a.z}, wh[3] = {w.b.x, w.b.y, w.b.z};
+    for (int a = 0; a < 3; ++a)
+      if (lo[std::size_t(a)] < wl[a] || (hi[std::size_t(a)] > wh[a] && !(a == 1 && w.open_top))) return s;
+  }
+  return -1;
+}
+
 }  // namespace
 
 double body_clearance(const BodySpec& b, const Vec3d& p) { return boundary_clearance(body_shape(b), p); }
@@ -45,14 +57,9 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     const auto refuse = [&](const std::string& why) { throw SceneError(scene.source + ": " + label + ": " + why); };
     Vec3d lo, hi;
     bounds(spec, lo, hi);
-    for (int32_t s = 0; s < c.num_shapes; ++s) {
-      const Shape& w = c.shapes[s];
-      if (w.type != ShapeType::Box || !w.keep_inside) continue;
-      const double wl[3] = {w.a.x, w.a.y, w.a.z}, wh[3] = {w.b.x, w.b.y, w.b.z};
-      for (int a = 0; a < 3; ++a)
-        if (lo[std::size_t(a)] < wl[a] || (hi[std::size_t(a)] > wh[a] && !(a == 1 && w.open_top)))
-          refuse("it crosses a wall of boundaries." + std::to_string(s) + " (box container) where it starts; place it inside");
-    }
+    const int32_t crossed = crossed_container(c, lo, hi);
+    if (crossed >= 0)
+      refuse("it crosses a wall of boundaries." + std::to_string(crossed) + " (box container) where it starts; place it inside");
     for (std::size_t j = 0; j < i; ++j) {
       Vec3d lo2, hi2;
       bounds(scene.bodies[j], lo2, hi2);
@@ -84,14 +91,9 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     if (spec.prescribed) {  // its whole stroke must stay inside the containers
       Vec3d lo2 = lo, hi2 = hi;
       for (std::size_t a = 0; a < 3; ++a) lo2[a] -= std::fabs(spec.amplitude[a]), hi2[a] += std::fabs(spec.amplitude[a]);
-      for (int32_t s = 0; s < c.num_shapes; ++s) {
-        const Shape& w = c.shapes[s];
-        if (w.type != ShapeType::Box || !w.keep_inside) continue;
-        const double wl[3] = {w.a.x, w.a.y, w.a.z}, wh[3] = {w.b.x, w.b.y, w.b.z};
-        for (int a = 0; a < 3; ++a)
-          if (lo2[std::size_t(a)] < wl[a] || (hi2[std::size_t(a)] > wh[a] && !(a == 1 && w.open_top)))
-            refuse("its oscillation carries it through a wall of boundaries." + std::to_string(s) + "; lower the amplitude");
-      }
+      const int32_t through = crossed_container(c, lo2, hi2);
+      if (through >= 0)
+        refuse("its oscillation carries it through a wall of boundaries." + std::to_string(through) + "; lower the amplitude");
     }
     // Its particles: the body alone as an obstacle (its own volumes), then relative to its centre.
     SimConstants alone = c;
