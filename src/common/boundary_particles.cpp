@@ -294,14 +294,17 @@ void build_cells(BoundaryParticles& b, double h) {
   std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return key[i] < key[j]; });
   std::vector<Vec4> pos(n), normal_depth(n);
   std::vector<float> friction(n);
+  std::vector<int32_t> solid(n);
   for (std::size_t i = 0; i < n; ++i) {
     pos[i] = b.pos_volume[order[i]];
     friction[i] = b.friction[order[i]];
     normal_depth[i] = b.normal_depth[order[i]];
+    solid[i] = b.solid[order[i]];
   }
   b.pos_volume.swap(pos);
   b.friction.swap(friction);
   b.normal_depth.swap(normal_depth);
+  b.solid.swap(solid);
   const std::size_t cells = std::size_t(b.nx) * std::size_t(b.ny) * std::size_t(b.nz);
   b.cell_start.assign(cells + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++b.cell_start[std::size_t(key[order[i]]) + 1];
@@ -313,7 +316,7 @@ void build_cells(BoundaryParticles& b, double h) {
 void regrid_boundary_particles(BoundaryParticles& b, double h) { build_cells(b, h); }
 
 BoundaryView BoundaryParticles::view() const {
-  return BoundaryView{int32_t(pos_volume.size()), pos_volume.data(), friction.data(), normal_depth.data(), cell_start.data(),
+  return BoundaryView{int32_t(pos_volume.size()), pos_volume.data(), friction.data(), normal_depth.data(), solid.data(), cell_start.data(),
                       origin, cell > 0.0f ? 1.0f / cell : 0.0f, nx, ny, nz};
 }
 
@@ -358,6 +361,7 @@ BoundaryParticles sample_boundary_particles(const SimConstants& c, const std::ve
     all.pos_volume.push_back(with_w(s.x, s.keep ? 1.0f : 0.0f));  // w: keep, for now
     all.friction.push_back(s.friction);
     all.normal_depth.push_back(s.keep ? surface_of(w, s.solid_index, s.x) : Vec4{0.0f, 0.0f, 0.0f, 0.0f});
+    all.solid.push_back(s.solid_index);
   }
   build_cells(all, h);
   const BoundaryView view = all.view();
@@ -370,6 +374,7 @@ BoundaryParticles sample_boundary_particles(const SimConstants& c, const std::ve
     kept.pos_volume.push_back(with_w(xyz(all.pos_volume[std::size_t(i)]), float(1.0 / sum)));
     kept.friction.push_back(all.friction[std::size_t(i)]);
     kept.normal_depth.push_back(all.normal_depth[std::size_t(i)]);
+    kept.solid.push_back(all.solid[std::size_t(i)]);
   }
   build_cells(kept, h);
   return kept;

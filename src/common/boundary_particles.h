@@ -24,6 +24,7 @@ struct BoundaryParticles {
   std::vector<Vec4> pos_volume;  // x, y, z [m] and V_b [m^3], sorted by cell
   std::vector<float> friction;   // 1 - slip of the sampled shape
   std::vector<Vec4> normal_depth;  // the surface's normal towards the fluid and the depth below it [m]
+  std::vector<int32_t> solid;      // the shape (0 .. num_shapes - 1) or mesh (num_shapes + m) it samples
   std::vector<int32_t> cell_start;
   Vec3 origin{0.0f, 0.0f, 0.0f};
   float cell = 0.0f;  // cell size [m]

@@ -21,6 +21,7 @@ struct BoundaryView {
   const Vec4* pos_volume;   // n: x, y, z [m] and the volume V_b [m^3], sorted by cell
   const float* friction;    // n: the boundary's viscosity factor, 1 - slip of the shape it samples
   const Vec4* normal_depth;  // n: unit normal of the nearest surface, towards the fluid, and the depth below it [m]
+  const int32_t* solid;      // n: which solid it samples (a shape or mesh index of the scene; 0 in a body)
   const int32_t* cell_start;  // nx * ny * nz + 1: first particle of each cell (x fastest), then n
   Vec3 origin;              // corner of cell (0, 0, 0) [m]
   float inv_cell;           // 1 / cell size [1/m]; the cell size is at least h
@@ -102,18 +103,28 @@ SPH_HD inline void for_each_body_particle(const BodyView* bodies, int32_t num_bo
 // an impact drives between the boundary particles, where their repulsion, symmetric about the gap, would
 // no longer push it out.
 
-// The deciding boundary particle of bv for a point x (in bv's frame): the one whose plane x lies least far
-// behind, when x lies behind every near plane; else -1. `behind` gets that depth.
-SPH_HD_ALWAYS_INLINE int32_t deepest_plane(const BoundaryView& bv, Vec3 x, float h2, float& behind) {
+// The deciding boundary particle of bv for a point x (in bv's frame) among those of solid `solid` (-1: the
+// solid of the nearest): the one whose plane x lies least far behind, when x lies behind the plane of every
+// particle of that solid within 1.5 times the distance of its nearest; else -1. `behind` gets that depth,
+// `nearest_solid` the solid examined.
+SPH_HD_ALWAYS_INLINE int32_t deepest_plane(const BoundaryView& bv, Vec3 x, float h2, int32_t solid, float& behind,
+                                           int32_t& nearest_solid) {
   float nearest = h2;
-  for_each_boundary(bv, x, h2, [&](int32_t, Vec3, float r2, float) { nearest = r2 < nearest ? r2 : nearest; });
+  nearest_solid = -1;
+  for_each_boundary(bv, x, h2, [&](int32_t b, Vec3, float r2, float) {
+    const int32_t s = bv.solid[b];
+    if (r2 < nearest && (solid < 0 ? true : s == solid)) {
+      nearest = r2;
+      nearest_solid = s;
+    }
+  });
   behind = 0.0f;
-  if (!(nearest < h2)) return -1;
+  if (nearest_solid < 0) return -1;
   const float near2 = 2.25f * nearest;
   int32_t deciding = -1;
-  float least = h2;  // larger than any depth
+  float least = 3.0e38f;  // above any depth
   for_each_boundary(bv, x, h2, [&](int32_t b, Vec3 xab, float r2, float) {
-    if (r2 > near2) return;
+    if (r2 > near2 || bv.solid[b] != nearest_solid) return;
     const Vec4 nd = bv.normal_depth[b];
     const float depth = nd.w - dot(xyz(nd), xab);  // > 0: behind the surface
     if (depth < least) {
@@ -126,12 +137,31 @@ SPH_HD_ALWAYS_INLINE int32_t deepest_plane(const BoundaryView& bv, Vec3 x, float
   return deciding;
 }
 
+// The deciding particle for x among the nearest solid's, else among the next nearest solid's (where two
+// solids meet: a cup standing on the floor), as deepest_plane.
+SPH_HD_ALWAYS_INLINE int32_t inside_solid(const BoundaryView& bv, Vec3 x, float h2, float& behind) {
+  int32_t first = -1, second = -1;
+  int32_t b = deepest_plane(bv, x, h2, -1, behind, first);
+  if (b >= 0 || first < 0) return b;
+  // The nearest particle of any other solid.
+  float nearest = h2;
+  for_each_boundary(bv, x, h2, [&](int32_t k, Vec3, float r2, float) {
+    if (bv.solid[k] != first && r2 < nearest) {
+      nearest = r2;
+      second = bv.solid[k];
+    }
+  });
+  if (second < 0) return -1;
+  int32_t examined = -1;
+  return deepest_plane(bv, x, h2, second, behind, examined);
+}
+
 // Particle i against the static boundary particles, then against each rigid body's (in the body's frame;
 // there the position only).
 SPH_HD_ALWAYS_INLINE void collide_boundary_particles(const BoundaryView& bv, const BodyView* bodies, int32_t num_bodies, float h2,
                                                      Vec3* pos, Vec3* vel, int32_t i) {
   float behind = 0.0f;
-  const int32_t b = bv.n > 0 ? deepest_plane(bv, pos[i], h2, behind) : -1;
+  const int32_t b = bv.n > 0 ? inside_solid(bv, pos[i], h2, behind) : -1;
   if (b >= 0) {
     const Vec3 n = xyz(bv.normal_depth[b]);
     pos[i] = pos[i] + behind * n;
@@ -143,7 +173,8 @@ SPH_HD_ALWAYS_INLINE void collide_boundary_particles(const BoundaryView& bv, con
     const BodyView& body = bodies[k];
     const Vec3 rel = pos[i] - body.centre;
     if (!(length2(rel) < body.reach2)) continue;
-    const int32_t c = deepest_plane(body.local, world_to_body(body, rel), h2, behind);
+    int32_t examined = -1;
+    const int32_t c = deepest_plane(body.local, world_to_body(body, rel), h2, -1, behind, examined);
     if (c < 0) continue;
     // Only the position: a velocity taken away here would be momentum the body never received (the
     // fluid's push on a body is its pressure, summed as the reaction, src/solvers/rigid_bodies.h).

@@ -57,6 +57,13 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     const auto refuse = [&](const std::string& why) { throw SceneError(scene.source + ": " + label + ": " + why); };
     Vec3d lo, hi;
     bounds(spec, lo, hi);
+    for (std::size_t a = 0; a < 3; ++a)
+      if (hi[a] - lo[a] < 2.0 * spacing) {
+        std::ostringstream os;
+        os << "it is " << hi[a] - lo[a] << " m thick along axis " << "xyz"[a] << ", less than two particle spacings ("
+           << 2.0 * spacing << " m): its boundary particles could not tell its faces apart; make it thicker or refine the resolution";
+        refuse(os.str());
+      }
     const int32_t crossed = crossed_container(c, lo, hi);
     if (crossed >= 0)
       refuse("it crosses a wall of boundaries." + std::to_string(crossed) + " (box container) where it starts; place it inside");

@@ -205,6 +205,7 @@ struct DeviceBoundary {
   DeviceVector<Vec4> pos_volume;
   DeviceVector<float> friction;
   DeviceVector<Vec4> normal_depth;
+  DeviceVector<int32_t> solid;
   DeviceVector<int32_t> cell_start;
   BoundaryView geometry{};  // the host view's grid; its pointers are replaced by view()
 
@@ -212,6 +213,7 @@ struct DeviceBoundary {
     pos_volume.assign(b.pos_volume.begin(), b.pos_volume.end());
     friction.assign(b.friction.begin(), b.friction.end());
     normal_depth.assign(b.normal_depth.begin(), b.normal_depth.end());
+    solid.assign(b.solid.begin(), b.solid.end());
     cell_start.assign(b.cell_start.begin(), b.cell_start.end());
     geometry = b.view();
   }
@@ -221,6 +223,7 @@ struct DeviceBoundary {
     v.pos_volume = thrust::raw_pointer_cast(pos_volume.data());
     v.friction = thrust::raw_pointer_cast(friction.data());
     v.normal_depth = thrust::raw_pointer_cast(normal_depth.data());
+    v.solid = thrust::raw_pointer_cast(solid.data());
     v.cell_start = thrust::raw_pointer_cast(cell_start.data());
     return v;
   }
