@@ -107,7 +107,7 @@ SPH_HD inline void for_each_body_particle(const BodyView* bodies, int32_t num_bo
 // solid of the nearest): the one whose plane x lies least far behind, when x lies behind the plane of every
 // particle of that solid within 1.5 times the distance of its nearest; else -1. `behind` gets that depth,
 // `nearest_solid` the solid examined.
-SPH_HD_ALWAYS_INLINE int32_t deepest_plane(const BoundaryView& bv, Vec3 x, float h2, int32_t solid, float& behind,
+SPH_HD_ALWAYS_INLINE int32_t deciding_plane(const BoundaryView& bv, Vec3 x, float h2, int32_t solid, float& behind,
                                            int32_t& nearest_solid) {
   float nearest = h2;
   nearest_solid = -1;
@@ -138,10 +138,10 @@ SPH_HD_ALWAYS_INLINE int32_t deepest_plane(const BoundaryView& bv, Vec3 x, float
 }
 
 // The deciding particle for x among the nearest solid's, else among the next nearest solid's (where two
-// solids meet: a cup standing on the floor), as deepest_plane.
+// solids meet: a cup standing on the floor), as deciding_plane.
 SPH_HD_ALWAYS_INLINE int32_t inside_solid(const BoundaryView& bv, Vec3 x, float h2, float& behind) {
   int32_t first = -1, second = -1;
-  int32_t b = deepest_plane(bv, x, h2, -1, behind, first);
+  int32_t b = deciding_plane(bv, x, h2, -1, behind, first);
   if (b >= 0 || first < 0) return b;
   // The nearest particle of any other solid.
   float nearest = h2;
@@ -153,7 +153,7 @@ SPH_HD_ALWAYS_INLINE int32_t inside_solid(const BoundaryView& bv, Vec3 x, float 
   });
   if (second < 0) return -1;
   int32_t examined = -1;
-  return deepest_plane(bv, x, h2, second, behind, examined);
+  return deciding_plane(bv, x, h2, second, behind, examined);
 }
 
 // Particle i against the static boundary particles, then against each rigid body's (in the body's frame;
@@ -174,7 +174,7 @@ SPH_HD_ALWAYS_INLINE void collide_boundary_particles(const BoundaryView& bv, con
     const Vec3 rel = pos[i] - body.centre;
     if (!(length2(rel) < body.reach2)) continue;
     int32_t examined = -1;
-    const int32_t c = deepest_plane(body.local, world_to_body(body, rel), h2, -1, behind, examined);
+    const int32_t c = deciding_plane(body.local, world_to_body(body, rel), h2, -1, behind, examined);
     if (c < 0) continue;
     // Only the position: a velocity taken away here would be momentum the body never received (the
     // fluid's push on a body is its pressure, summed as the reaction, src/solvers/rigid_bodies.h).

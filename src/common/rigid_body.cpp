@@ -75,17 +75,6 @@ BodyView RigidBody::view(const BoundaryView& local_view, float h) const {
   return BodyView{local_view, f3(centre), col(0), col(1), col(2), f3(velocity), f3(omega), reach * reach};
 }
 
-std::vector<Vec3> RigidBody::world_particles() const {
-  const Eigen::Matrix3d R = quaternion(orientation).toRotationMatrix();
-  std::vector<Vec3> out;
-  out.reserve(local.size());
-  for (const Vec4& p : local.pos_volume) {
-    const Eigen::Vector3d x = e3(centre) + R * Eigen::Vector3d(p.x, p.y, p.z);
-    out.push_back(Vec3{float(x.x()), float(x.y()), float(x.z())});
-  }
-  return out;
-}
-
 void advance_body(RigidBody& b, const SimConstants& c, double dt) {
   b.contact = false;
   if (!(dt > 0.0)) return;

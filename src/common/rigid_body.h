@@ -41,10 +41,6 @@ struct RigidBody {
 
   // The view the fluid's loops read, with `local` as given (the back end's copy of this body's particles).
   BodyView view(const BoundaryView& local_view, float h) const;
-  // World positions of its particles (tests, drawing).
-  std::vector<Vec3> world_particles() const;
-  // Linear momentum [kg m/s].
-  BodyVector momentum() const { return {mass * velocity[0], mass * velocity[1], mass * velocity[2]}; }
 };
 
 // One step of a free body: v += dt (F / M + g), the angular momentum L = I_world omega += dt tau, omega from
