@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Validation runs with an error figure each: the dam break against Martin & Moyce (1952), the water jet
-against the thesis's AXIM range, and the hydrostatic tank. Runs build/sph_run, writes OUT/validation.json,
+against the thesis's AXIM range, the hydrostatic tank, and the dam break with an obstacle against MARIN's
+gauges (SPHERIC benchmark 2, spheric2.py). Runs build/sph_run, writes OUT/validation.json,
 OUT/validation.md and OUT/dam_break_vs_experiment.png.
 
 usage: benchmarks/validate.py [--backend host] [--quick] [--out out/validation]
@@ -20,6 +21,7 @@ import numpy as np
 
 from experiments import A, AXIM_RANGE, G, dam_break_curves, dam_break_errors, jet_range, read_reference
 from ply_frames import read_ply
+from spheric2 import compare as spheric2_compare
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -200,6 +202,18 @@ def hydrostatic(args, out):
     return results
 
 
+def spheric2(args, out):
+    """SPHERIC benchmark 2 (scenes/dam_break_obstacle.json) against MARIN's gauges (spheric2.py). The full
+    run is the scene as it is (about 48k particles, 6 s); --quick a coarse 1.5 s."""
+    sets = ["resolution.spacing=0.05"] if args.quick else []
+    t_end = 1.5 if args.quick else 6.0
+    m, summary, wall = run(args, "dam break with obstacle (SPHERIC 2)", "dam_break_obstacle.json", t_end,
+                           os.path.join(out, "dam_break_obstacle"), sets, metrics_every=0.01)
+    r = spheric2_compare(m, out, pyplot(), save_chart)
+    r.update({"particles": int(summary["particles"]), "wall_seconds": wall, "ms_per_step": float(summary["ms_per_step"])})
+    return r
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--backend", default="host")
@@ -209,7 +223,8 @@ def main():
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     results = {"backend": args.backend, "quick": args.quick,
-               "dam_break": dam_break(args, args.out), "water_jet": water_jet(args, args.out)}
+               "dam_break": dam_break(args, args.out), "water_jet": water_jet(args, args.out),
+               "spheric2": spheric2(args, args.out)}
     if not args.quick:
         results["hydrostatic_tank"] = hydrostatic(args, args.out)
     with open(os.path.join(args.out, "validation.json"), "w") as f:
@@ -233,6 +248,16 @@ def main():
               f"{wj['radius_last_slice_continuity_m']:.3f} m) | {wj['radius_first_slice_m']:.3f} m / {wj['radius_last_slice_m']:.3f} m | |",
               f"| water jet | narrowing, last / first radius | {wj['radius_narrowing']:.3f} "
               f"(incompressible {wj['radius_narrowing_continuity']:.3f}) | |"]
+    sp = results["spheric2"]
+    for g, r in sp["gauges"].items():
+        arrival = "" if r["arrival_s"] is None and r["arrival_measured_s"] is None else (
+            f"; reached at {r['arrival_s'] or float('nan'):.2f} s (MARIN {r['arrival_measured_s'] or float('nan'):.2f} s)")
+        lines.append(f"| SPHERIC 2 dam break with obstacle ({sp['particles']} particles, {sp['simulated_seconds']:.1f} s) | "
+                     f"gauge {g} (x = {r['x_m']} m): depth MAE; mean signed error{arrival} | "
+                     f"{100 * r['mae_m']:.1f} cm; {100 * r['mean_signed_error_m']:+.1f} cm | |")
+    if sp.get("water_reaches_obstacle_s") is not None:
+        lines.append(f"| SPHERIC 2 | water reaches the obstacle (2 cm deep 2.5 cm before its face) | "
+                     f"{sp['water_reaches_obstacle_s']:.3f} s | |")
     if "hydrostatic_tank" in results:
         for walls, hs in results["hydrostatic_tank"].items():
             lines += [f"| hydrostatic tank, {walls} walls | interior density error | {100 * hs['interior_density_error_mean']:.2f}% | <= 1% |",
@@ -244,6 +269,7 @@ def main():
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
     print(f"\nwritten: {args.out}/validation.json, validation.md, dam_break_vs_experiment.png, water_jet.png, "
+          "spheric2_gauges.png, spheric2_gauges.csv, "
           "water_jet_trajectory.csv")
 
 

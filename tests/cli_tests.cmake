@@ -378,3 +378,22 @@ sph_cli_test(bodies_prescribed_without_oscillation
 sph_cli_test(bodies_stroke_through_wall
   --exit 1 --stderr "bodies.0" --stderr "through a wall"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/wave_maker.json --set "bodies.0.oscillation.amplitude=[0.5,0,0]" --steps 1 --out ${SPH_CLI_OUT}/bodies_stroke)
+
+# --- water-height probes (scene key "probes"): columns depth_<name>; a bad name or no gravity is refused ---
+sph_cli_test(probes_columns
+  --exit 0 --csv-column ${SPH_CLI_OUT}/probes/metrics.csv depth_H1 --csv-column ${SPH_CLI_OUT}/probes/metrics.csv depth_box_front
+  --csv-column ${SPH_CLI_OUT}/probes/metrics.csv deepest_in_solid --csv-complete ${SPH_CLI_OUT}/probes/metrics.csv
+  --stdout "deepest_in_solid:"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break_obstacle.json --set resolution.spacing=0.05 --steps 5 --out ${SPH_CLI_OUT}/probes)
+sph_cli_test(probes_bad_name
+  --exit 1 --stderr "probes.0.name" --stderr "letters, digits and '_'"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break_obstacle.json --set "probes.0.name=H-1" --steps 1 --out ${SPH_CLI_OUT}/probes_name)
+sph_cli_test(probes_same_name
+  --exit 1 --stderr "probes.1.name" --stderr "names two probes"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break_obstacle.json --set "probes.1.name=H1" --steps 1 --out ${SPH_CLI_OUT}/probes_twice)
+sph_cli_test(probes_without_gravity
+  --exit 1 --stderr "probes" --stderr "gravity"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break_obstacle.json --set "gravity=[0,0,0]" --steps 1 --out ${SPH_CLI_OUT}/probes_g)
+sph_cli_test(probes_position_not_finite
+  --exit 1 --stderr "probes.2.position"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break_obstacle.json --set "probes.2.position=[1,\"x\",0]" --steps 1 --out ${SPH_CLI_OUT}/probes_pos)

@@ -22,6 +22,7 @@
 #include "../common/frame_reader.h"
 #include "../common/frame_writer.h"
 #include "../common/metrics.h"
+#include "../common/solid_penetration.h"
 #include "../common/setup_budget.h"
 #include "../common/simulation.h"
 #include "backends.h"
@@ -72,10 +73,32 @@ const char* limit_name(StepLimit l) {
 const char* const kMetricsHeader =
     "time,dt,step,kinetic_energy,potential_energy,energy_budget,density_error_mean,density_error_max,v_max,front_x,"
     "top_y,height_at_x0,particles,outside_domain,wall_ms,solver_iterations,solver_density_error,divergence_iterations,"
-    "divergence_error";
+    "divergence_error,deepest_in_solid,particles_in_solids";
 
-// Writes one row; returns the particles outside the domain (the summary reports the most of any row).
-long write_metrics_row(MetricsFile& csv, const Simulation& sim, const Metrics& m, double wall_ms) {
+// The header with a depth_<name> column per probe of the scene.
+std::string metrics_header(const Scene& scene) {
+  std::string header = kMetricsHeader;
+  for (const ProbeSpec& p : scene.probes) header += ",depth_" + p.name;
+  return header;
+}
+
+// The worst of the metrics rows, for the summary.
+struct RowExtremes {
+  long most_outside = 0;     // particles outside the domain
+  double deepest = 0.0;      // [m] the deepest any fluid particle got into a solid (solid_penetration.h)
+  long most_in_solids = 0;   // particles deeper than half a spacing in a solid
+};
+
+// Writes one row, the probes' depths (metrics.h, probe_depth) last, and updates the extremes.
+void write_metrics_row(MetricsFile& csv, Simulation& sim, const std::vector<ProbeSpec>& probes, double wall_ms,
+                       RowExtremes& worst) {
+  const Setup& setup = sim.setup();
+  const SimConstants& c = setup.constants;
+  const Metrics m = measure(c, sim.particles(), sim.potential_reference());
+  const Penetration pen = solid_penetration(c, setup.meshes, sim.backend().bodies(), sim.particles(), 0.5 * setup.spacing);
+  worst.most_outside = std::max(worst.most_outside, m.outside_domain);
+  worst.deepest = std::max(worst.deepest, pen.deepest);
+  worst.most_in_solids = std::max(worst.most_in_solids, pen.count);
   std::ostringstream row;
   row.precision(9);
   row << sim.time() << ',' << sim.last_dt() << ',' << sim.steps() << ',' << m.kinetic_energy << ',' << m.potential_energy
@@ -83,9 +106,9 @@ long write_metrics_row(MetricsFile& csv, const Simulation& sim, const Metrics& m
       << ',' << m.height_at_x0 << ',' << m.particles << ',' << m.outside_domain << ',' << wall_ms;
   const SolverStats& st = sim.solver_stats();  // the last step's solves (zero under WCSPH)
   row << ',' << st.density_iterations << ',' << st.density_error << ',' << st.divergence_iterations << ','
-      << st.divergence_error;
+      << st.divergence_error << ',' << pen.deepest << ',' << pen.count;
+  for (const ProbeSpec& p : probes) row << ',' << probe_depth(c, sim.particles(), p.position);
   csv.write_row(row.str());
-  return m.outside_domain;
 }
 
 // --restart: the frame to continue from (nullptr without the option), read and checked before the
@@ -188,7 +211,7 @@ void print_solver_summary(const Simulation& sim) {
 // The summary: figures of the whole run. ms_per_step is the median wall time of one step (benchmarks
 // parse it); the means are named as such.
 void print_summary(Simulation& sim, const Metrics& m, const std::vector<double>& step_ms, double wall,
-                   long most_outside) {
+                   const RowExtremes& worst) {
   const double med = median(step_ms);
   std::cout << "simulated_time: " << sim.time() << "\n"
             << "particles: " << sim.backend().size() << "\n"
@@ -201,7 +224,9 @@ void print_summary(Simulation& sim, const Metrics& m, const std::vector<double>&
             << "density_error_mean: " << m.density_error_mean << "\n"
             << "density_error_max: " << m.density_error_max << "\n"
             << "front_x: " << m.front_x << "\n"
-            << "particles_outside_domain: " << m.outside_domain << " (most in a metrics row: " << most_outside << ")\n";
+            << "particles_outside_domain: " << m.outside_domain << " (most in a metrics row: " << worst.most_outside << ")\n"
+            << "deepest_in_solid: " << worst.deepest << " m = " << worst.deepest / sim.setup().spacing
+            << " spacings (particles deeper than half a spacing, the most in a metrics row: " << worst.most_in_solids << ")\n";
   print_solver_summary(sim);
   const PhaseTimes& pt = sim.backend().phase_times();
   if (pt.steps > 0) {
@@ -243,7 +268,7 @@ int run(const Options& o) {
        << "); --time and --steps count from the original start";
     throw SceneError(os.str());
   }
-  MetricsFile csv((fs::path(o.out) / "metrics.csv").string(), kMetricsHeader, restart ? restart->info.step : -1,
+  MetricsFile csv((fs::path(o.out) / "metrics.csv").string(), metrics_header(scene), restart ? restart->info.step : -1,
                   restart ? restart->info.time : 0.0);
 
   Simulation sim = make_simulation(scene, factory, run_time, restart.get());
@@ -269,7 +294,7 @@ int run(const Options& o) {
   install_stop_handlers();
   const bool tty = isatty(STDERR_FILENO) && !o.quiet;
   std::vector<double> step_ms;
-  long most_outside = 0;  // particles outside the domain, the most of any metrics row
+  RowExtremes worst;  // the worst of the metrics rows
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   int status = kDone;
@@ -283,7 +308,7 @@ int run(const Options& o) {
     long last_row_step = sim.steps();  // the last step metrics.csv has a row for
     double last_ms = 0.0;
     if (!csv.continued())
-      most_outside = write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), 0.0);
+      write_metrics_row(csv, sim, scene.probes, 0.0, worst);
     next_metrics = o.metrics_every;
     while (!stop_requested() && (by_steps ? sim.steps() < o.steps : sim.time() < run_time - 1e-12)) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -300,8 +325,7 @@ int run(const Options& o) {
       step_ms.push_back(ms);
       last_ms = ms;
       if (sim.time() >= next_metrics - 1e-12) {
-        most_outside = std::max(
-            most_outside, write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), ms));
+        write_metrics_row(csv, sim, scene.probes, ms, worst);
         next_metrics = sim.time() + o.metrics_every;
         last_row_step = sim.steps();
       }
@@ -322,8 +346,7 @@ int run(const Options& o) {
     }
     // The final state always has its row, whatever --metrics-every skipped (and a blown-up one shows how).
     if (sim.steps() != last_row_step)
-      most_outside = std::max(
-          most_outside, write_metrics_row(csv, sim, measure(st.constants, sim.particles(), sim.potential_reference()), last_ms));
+      write_metrics_row(csv, sim, scene.probes, last_ms, worst);
     csv.close();
   } catch (const OutputError& e) {
     output_error = e.what();
@@ -339,10 +362,15 @@ int run(const Options& o) {
               << "); the output written so far is complete\n";
     status = 128 + sig;
   }
-  most_outside = std::max(most_outside, m.outside_domain);
-  print_summary(sim, m, step_ms, wall, most_outside);
-  if (most_outside > 0)
-    std::cerr << "warning: " << most_outside << " particles left the domain (the container or \"domain\" with a band of 2 h); "
+  worst.most_outside = std::max(worst.most_outside, m.outside_domain);
+  print_summary(sim, m, step_ms, wall, worst);
+  if (worst.deepest > sim.setup().spacing)
+    std::cerr << "warning: fluid got " << worst.deepest / sim.setup().spacing << " spacings deep into a solid (deeper than "
+              << "one spacing is past a wall's first layer of boundary particles, where the wall no longer holds it: a "
+              << "leak; deepest_in_solid and particles_in_solids in metrics.csv say when). A finer resolution, "
+              << "thicker walls or a smaller time_step.max may help\n";
+  if (worst.most_outside > 0)
+    std::cerr << "warning: " << worst.most_outside << " particles left the domain (the container or \"domain\" with a band of 2 h); "
               << "they are still simulated, but the domain does not enclose the fluid: check the boundaries\n";
   std::cout << "metrics: " << csv.path() << (frame > first_frame ? ", frames: " + std::to_string(frame - first_frame) : std::string()) << "\n";
   std::cout.flush();
@@ -383,8 +411,10 @@ int main(int argc, char** argv) {
       "sph_run: run an SPH scene headless and record what happens.\n\n"
       "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, potential_energy, energy_budget, density_error_mean,\n"
       "density_error_max, v_max, front_x, top_y, height_at_x0, particles, outside_domain, wall_ms, and the iterative\n"
-      "solvers' solver_iterations, solver_density_error, divergence_iterations, divergence_error; flushed at least\n"
-      "once per second) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends\n"
+      "solvers' solver_iterations, solver_density_error, divergence_iterations, divergence_error, deepest_in_solid\n"
+      "(m: the deepest any fluid particle is inside a wall, obstacle or body), particles_in_solids (deeper than\n"
+      "half a spacing), then depth_<name> for each of the scene's \"probes\" (water-height gauges); flushed at\n"
+      "least once per second) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends\n"
       "with a summary: particles, steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by\n"
       "phase), the solver and, for DFSPH and PBF, iterations per step and steps that reached the iteration cap.\n"
       "The pressure solver is the scene's \"solver\": wcsph (default), dfsph or pbf (--set solver=dfsph).\n"

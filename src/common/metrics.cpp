@@ -84,4 +84,26 @@ Metrics measure(const SimConstants& c, const ParticleState& ps, double potential
   return m;
 }
 
+double probe_depth(const SimConstants& c, const ParticleState& ps, const std::array<double, 3>& base) {
+  const double gx = c.gravity.x, gy = c.gravity.y, gz = c.gravity.z;
+  const double g = std::sqrt(gx * gx + gy * gy + gz * gz);
+  if (g == 0.0) return 0.0;
+  const double ux = -gx / g, uy = -gy / g, uz = -gz / g;  // up
+  const double h2 = 2.25 * double(c.kernel.h) * c.kernel.h;  // R = 1.5 h, R^2
+  const double norm = 4.0 / (kPiDouble * h2 * h2 * h2 * h2);
+  double depth = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.age[i] < 0.0f) continue;  // still in a jet's inlet
+    const double dx = ps.pos[i].x - base[0], dy = ps.pos[i].y - base[1], dz = ps.pos[i].z - base[2];
+    const double up = dx * ux + dy * uy + dz * uz;
+    if (!(up >= 0.0)) continue;  // below the gauge (NaN positions too)
+    const double r2 = dx * dx + dy * dy + dz * dz - up * up;
+    if (r2 >= h2) continue;
+    const FluidConstants& f = c.fluids[ps.fluid[i]];
+    const double w = h2 - r2;
+    depth += double(f.mass) / f.rest_density * norm * w * w * w;
+  }
+  return depth;
+}
+
 }  // namespace sph

@@ -1,6 +1,7 @@
 // Whole-fluid measurements written to metrics.csv by the runner and used by tests and validation.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "particle_state.h"
@@ -26,6 +27,16 @@ struct Metrics {
 // potential_reference: the specific potential energy -g.x [J/kg] counted as zero, normally the lowest level
 // the fluid can reach (Simulation::potential_reference()).
 Metrics measure(const SimConstants& c, const ParticleState& ps, double potential_reference = 0.0);
+
+// Depth of fluid [m] above `base` along -gravity, as a wave gauge reads it: the fluid's rest volume per
+// unit horizontal area, averaged over a disc of radius R = 1.5 h about the vertical through base,
+//   d = sum_j (m_j / rho0_j) W2(r_j),  W2(r) = 4 / (pi R^8) (R^2 - r^2)^3 for r < R (integral 1 over the plane),
+// over fluid particles j at or above base (r_j their horizontal distance from the vertical). On a particle
+// lattice the sum of W2 is within 0.3% of 1 wherever the gauge stands at R = 1.5 h (1.4% at R = h).
+// Integrating the volume rather than finding a surface makes it independent of how the floor truncates a
+// kernel, counts spray above a breaking wave as water, as a gauge's wetted length does, and reads 0 where
+// dry. Needs gravity != 0 (the vertical); without it returns 0.
+double probe_depth(const SimConstants& c, const ParticleState& ps, const std::array<double, 3>& base);
 
 // Specific potential energy of gravity at x: phi = -g.x [J/kg] (g.h above the origin for g along -y).
 // 1/2 m v^2 [J] of particle i (double precision: sums over millions of particles).

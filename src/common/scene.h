@@ -85,6 +85,13 @@ struct MeshSpec {
   double slip = 1.0;             // 1 - the boundary particles' friction factor, as a shape's slip
 };
 
+// A water-height probe (scene key "probes"): the depth of fluid above `position` along -gravity, written to
+// metrics.csv as the column depth_<name> (metrics.h, probe_depth). Like a wave gauge of an experiment.
+struct ProbeSpec {
+  std::string name;   // letters, digits and '_'
+  Vec3d position{};   // [m], normally on the floor
+};
+
 enum class TimeStepMode { Fixed, Adaptive };
 enum class MassRule { RestDensity, Volume };
 
@@ -124,6 +131,7 @@ struct Scene {
   std::vector<BoundarySpec> boundaries;
   std::vector<MeshSpec> meshes;
   std::vector<BodySpec> bodies;
+  std::vector<ProbeSpec> probes;
 
   // Resolution (thesis 4.1.4): either particles across the first emitter's smallest extent, or a spacing.
   int particles_across = 0;

@@ -1,5 +1,6 @@
 // Scene files: JSON with string names for every choice, defaults in code, strict validation. Unknown keys,
 // unknown names, wrong types, non-finite or out-of-range numbers are errors that name the file and the key.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -452,7 +453,7 @@ Scene read_scene(const json& root, const std::string& source) {
   ObjectReader r(root, source, "");
   r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "solver", "dfsph", "pbf",
            "integrator", "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state", "on_overlap",
-           "meshes", "bodies"});
+           "meshes", "bodies", "probes"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -564,6 +565,29 @@ Scene read_scene(const json& root, const std::string& source) {
     }
   }
 
+  if (r.has("probes")) {  // water-height gauges: columns depth_<name> of metrics.csv
+    const json& ps = r.raw("probes");
+    if (!ps.is_array() || ps.size() > 64)
+      fail(source, "probes", "expected a list of at most 64 probes ({\"name\": \"H1\", \"position\": [x, y, z]})");
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      ObjectReader pr(ps[i], source, "probes." + std::to_string(i));
+      pr.allow({"name", "position"});
+      ProbeSpec p;
+      if (!pr.has("name")) pr.missing("name", "is required: letters, digits and '_' (the metrics.csv column is depth_<name>)");
+      p.name = pr.string("name", "");
+      const bool word = !p.name.empty() && p.name.size() <= 32 &&
+                        std::all_of(p.name.begin(), p.name.end(), [](char ch) {
+                          return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+                        });
+      if (!word) fail(source, pr.key_path("name"), "\"" + p.name + "\" is not a name: allowed 1 to 32 letters, digits and '_'");
+      for (const ProbeSpec& q : s.probes)
+        if (q.name == p.name) fail(source, pr.key_path("name"), "\"" + p.name + "\" names two probes");
+      p.position = pr.required_vec3("position");
+      pr.finish();
+      s.probes.push_back(p);
+    }
+  }
+
   if (!r.has("resolution")) r.missing("resolution", "is required: {\"particles_across\": N} or {\"spacing\": metres}");
   {
     ObjectReader rr(r.raw("resolution"), source, "resolution");
@@ -646,6 +670,8 @@ Scene read_scene(const json& root, const std::string& source) {
   }
 
   s.gravity = r.vec3("gravity", s.gravity, 1e4);
+  if (!s.probes.empty() && s.gravity == Vec3d{0.0, 0.0, 0.0})
+    fail(source, "probes", "a probe measures depth along gravity, and \"gravity\" is zero");
   s.overlap_error = r.choice<bool>("on_overlap", false, {{"remove", false}, {"error", true}});
 
   if (r.has("domain")) {

@@ -7,6 +7,7 @@
 #   --exit N           exit status must be N ("nonzero": anything but 0)
 #   --stderr TEXT      stderr contains TEXT (fixed string)
 #   --stdout TEXT      stdout contains TEXT (fixed string)
+#   --no-stderr TEXT   stderr does not contain TEXT (fixed string)
 #   --stdout-line TEXT stdout has a line that is exactly TEXT
 #   --stdout-prefix T  stdout has a line starting with T
 #   --file PATH        PATH exists after the run
@@ -29,7 +30,7 @@ signal_after=""
 while [ $# -gt 0 ] && [ "$1" != "--" ]; do
   case "$1" in
     --exit) expect_exit="$2"; shift 2 ;;
-    --stderr|--stdout|--stdout-line|--stdout-prefix|--file) checks+=("$1" "$2" ""); shift 2 ;;
+    --stderr|--no-stderr|--stdout|--stdout-line|--stdout-prefix|--file) checks+=("$1" "$2" ""); shift 2 ;;
     --csv-complete) checks+=("$1" "$2" ""); shift 2 ;;
     --min-lines|--csv-column) checks+=("$1" "$2" "$3"); shift 3 ;;
     --clean) clean+=("$2"); shift 2 ;;
@@ -92,6 +93,7 @@ while [ $i -lt ${#checks[@]} ]; do
   i=$((i + 3))
   case "$kind" in
     --stderr) grep -qF -- "$a" "$work/stderr" || fail "stderr does not contain: $a" ;;
+    --no-stderr) ! grep -qF -- "$a" "$work/stderr" || fail "stderr contains: $a" ;;
     --stdout) grep -qF -- "$a" "$work/stdout" || fail "stdout does not contain: $a" ;;
     --stdout-line) grep -qxF -- "$a" "$work/stdout" || fail "stdout has no line: $a" ;;
     --stdout-prefix)
