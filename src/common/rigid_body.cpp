@@ -4,15 +4,10 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Dense>
-#include <Eigen/Geometry>
+#include "body_math.h"
 
 namespace sph {
 namespace {
-
-Eigen::Vector3d e3(const BodyVector& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
-BodyVector b3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-Eigen::Quaterniond quaternion(const std::array<double, 4>& q) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]); }
 
 // Contact with the walls of box containers, simple and robust: each corner of a box body (a sphere's lowest
 // point towards each wall) found behind a wall is pushed back out (the body moves by the deepest

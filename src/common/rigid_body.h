@@ -26,6 +26,7 @@ struct RigidBody {
   double mass = 0.0;          // [kg]
   BodyVector inertia{};       // principal moments in the body frame (its axes) [kg m^2]
   double radius = 0.0;        // of its particles about the centre [m]
+  double spacing = 0.0;       // d its particles were sampled at [m]
   BodyVector half_extent{};   // box: half sides; sphere: the radius three times [m] (contact)
   bool sphere = false;
   // Prescribed motion: centre(t) = start + amplitude sin(2 pi t / period) (a piston wave maker).
@@ -47,8 +48,9 @@ struct RigidBody {
 // L with the rotated inertia, the orientation by the quaternion rate 0.5 [0, omega] q (normalised), x += dt
 // v (symplectic Euler, the fluid's forces of this step), g the scene's gravity. Then the walls of box
 // containers: corners behind a wall are pushed out and given an inelastic impulse at the contact
-// (rigid_body.cpp). Bodies do not touch each other yet. Fixed bodies do not move; prescribed ones follow
-// their oscillation (the fluid's force on them is recorded, not applied).
+// (rigid_body.cpp); bodies touching each other are handled after all have moved (body_contact.h).
+// Fixed bodies do not move; prescribed ones follow their oscillation (the fluid's force on them is
+// recorded, not applied).
 void advance_body(RigidBody& b, const SimConstants& c, double dt);
 
 }  // namespace sph

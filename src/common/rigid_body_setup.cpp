@@ -109,6 +109,7 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     std::vector<std::string> notes;
     try {
       b.local = sample_boundary_particles(alone, {}, spacing, max_particles, notes);
+      b.spacing = spacing;
     } catch (const std::invalid_argument& e) {
       refuse(e.what());
     }

@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "../common/forces.h"
+#include "../common/body_contact.h"
 #include "../common/rigid_body.h"
 #include "../common/sph_hd.h"
 
@@ -46,7 +47,7 @@ struct BodyReactionFn {
 
 // The fluid's force and torque on every moving body (into RigidBody::force, torque), then one step dt of
 // each (advance_body: a free body by them, a prescribed one by its clock; dt = 0 at the initial forces: the
-// force is recorded, nothing moves), then the new poses to the loops.
+// force is recorded, nothing moves), the contacts between bodies, then the new poses to the loops.
 template <class Exec>
 void update_bodies(Exec& x, float dt) {
   using C = typename Exec::Constants;
@@ -66,6 +67,7 @@ void update_bodies(Exec& x, float dt) {
     b.torque = {value[3], value[4], value[5]};
     advance_body(b, c, double(dt));
   }
+  if (dt > 0.0f) contact_between_bodies(bodies);
   x.upload_bodies();
 }
 
