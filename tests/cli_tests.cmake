@@ -397,3 +397,12 @@ sph_cli_test(probes_without_gravity
 sph_cli_test(probes_position_not_finite
   --exit 1 --stderr "probes.2.position"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break_obstacle.json --set "probes.2.position=[1,\"x\",0]" --steps 1 --out ${SPH_CLI_OUT}/probes_pos)
+sph_cli_test(bodies_flap_through_wall
+  --exit 1 --stderr "bodies.0" --stderr "through a wall" --stderr "angle"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/wave_maker.json
+     "--set=bodies.0.oscillation={\"angle\": 60, \"axis\": [0, 0, 1], \"pivot\": [0.05, 0, 0.05], \"period\": 0.8}"
+     --steps 1 --out ${SPH_CLI_OUT}/bodies_flap)
+sph_cli_test(bodies_flap_without_pivot
+  --exit 1 --stderr "bodies.0.oscillation.pivot" --stderr "axis"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/wave_maker.json
+     "--set=bodies.0.oscillation={\"angle\": 5, \"axis\": [0, 0, 1], \"period\": 0.8}" --steps 1 --out ${SPH_CLI_OUT}/bodies_pivot)

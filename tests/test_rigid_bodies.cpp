@@ -1,5 +1,7 @@
 // Rigid bodies with two-way coupling (issue 13): Archimedes (a box of density 500 floats half submerged, one
 // of 2000 sinks to the floor), and the momentum the fluid and a free body exchange.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -110,5 +112,41 @@ TEST_CASE("rigid bodies: a prescribed paddle follows its oscillation and does wo
   }
   INFO("largest deviation from the prescribed centre " << worst << " m; work done on the water " << work << " J");
   CHECK(worst <= 1e-12);
+  CHECK(work > 0.0);
+}
+
+TEST_CASE("rigid bodies: a prescribed flap turns about its hinge as asked and does work on the water", "[bodies]") {
+  // scenes/wave_maker.json with the paddle hinged instead: raised 2 cm off the floor, turning by
+  // 5 sin(2 pi t / 0.8 s) degrees about the z axis through (0.05, 0.02, 0.05). Its orientation is that turn and
+  // its centre the turned arm from the hinge at every step; its velocity is the rate of its centre. Over a whole period
+  // it does work on the water (the waves it makes).
+  const sph::Scene scene = scene_file(
+      "wave_maker.json", {"resolution.spacing=0.02", "bodies.0.min=[0.03,0.02,0.0]",
+                          R"(bodies.0.oscillation={"angle": 5, "axis": [0, 0, 1], "pivot": [0.05, 0.02, 0.05], "period": 0.8})"});
+  sph::Simulation sim(scene, cpu_factory(), 0.8);
+  const double pi = 3.14159265358979323846, amplitude = 5.0 * pi / 180.0, period = 0.8;
+  double work = 0.0, worst_angle = 0.0, worst_arm = 0.0, worst_rate = 0.0;
+  std::array<double, 3> last = sim.backend().bodies().at(0).centre;
+  while (sim.time() < 0.8) {  // a whole period: the hydrostatic push returns what it took
+    sim.advance();
+    const sph::RigidBody& b = sim.backend().bodies().at(0);
+    const double theta = amplitude * std::sin(2.0 * pi * b.time / period);
+    // Orientation: a turn about z by theta, quaternion (cos theta/2, 0, 0, sin theta/2).
+    worst_angle = std::max(worst_angle, std::fabs(2.0 * std::atan2(b.orientation[3], b.orientation[0]) - theta));
+    // Centre: the arm from the hinge to the start centre (0, 0.14, 0) turned by theta.
+    const double ax = -0.14 * std::sin(theta), ay = 0.14 * std::cos(theta);
+    worst_arm = std::max(worst_arm, std::hypot(b.centre[0] - (0.05 + ax), b.centre[1] - (0.02 + ay)));
+    // The mean velocity over the step against the centre's change (second order in dt).
+    const double mid_rate = (b.centre[0] - last[0]) / sim.last_dt();
+    worst_rate = std::max(worst_rate, std::fabs(mid_rate - b.velocity[0]) / (amplitude * 0.14 * 2.0 * pi / period));
+    last = b.centre;
+    work -= (b.force[0] * b.velocity[0] + b.force[1] * b.velocity[1] + b.force[2] * b.velocity[2] +
+             b.torque[0] * b.omega[0] + b.torque[1] * b.omega[1] + b.torque[2] * b.omega[2]) * sim.last_dt();
+  }
+  INFO("angle error " << worst_angle << " rad, centre error " << worst_arm << " m, velocity against the centre's rate "
+                      << worst_rate << " of the peak speed; work done on the water " << work << " J");
+  CHECK(worst_angle <= 1e-12);
+  CHECK(worst_arm <= 1e-12);
+  CHECK(worst_rate <= 0.01);
   CHECK(work > 0.0);
 }

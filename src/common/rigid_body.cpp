@@ -70,16 +70,25 @@ BodyView RigidBody::view(const BoundaryView& local_view, float h) const {
   return BodyView{local_view, f3(centre), col(0), col(1), col(2), f3(velocity), f3(omega), reach * reach};
 }
 
+void prescribed_pose(RigidBody& b, double t) {
+  const double w = 2.0 * 3.14159265358979323846 / b.period;
+  const double s = std::sin(w * t), ds = w * std::cos(w * t);  // s and its rate
+  const Eigen::Vector3d axis = e3(b.axis), pivot = e3(b.pivot), shift = e3(b.amplitude);
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(b.angle * s, axis));
+  const Eigen::Vector3d arm = q * (e3(b.start) - pivot);  // from the pivot to the centre, turned
+  const Eigen::Vector3d omega = (b.angle * ds) * axis;
+  b.centre = b3(pivot + arm + shift * s);
+  b.orientation = {q.w(), q.x(), q.y(), q.z()};
+  b.omega = b3(omega);
+  b.velocity = b3(omega.cross(arm) + shift * ds);
+}
+
 void advance_body(RigidBody& b, const SimConstants& c, double dt) {
   b.contact = false;
   if (!(dt > 0.0)) return;
   if (b.motion == BodyMotion::Prescribed) {
     b.time += dt;
-    const double w = 2.0 * 3.14159265358979323846 / b.period;
-    for (std::size_t i = 0; i < 3; ++i) {
-      b.centre[i] = b.start[i] + b.amplitude[i] * std::sin(w * b.time);
-      b.velocity[i] = b.amplitude[i] * w * std::cos(w * b.time);
-    }
+    prescribed_pose(b, b.time);
     return;
   }
   if (b.motion != BodyMotion::Free) return;

@@ -29,9 +29,13 @@ struct RigidBody {
   double spacing = 0.0;       // d its particles were sampled at [m]
   BodyVector half_extent{};   // box: half sides; sphere: the radius three times [m] (contact)
   bool sphere = false;
-  // Prescribed motion: centre(t) = start + amplitude sin(2 pi t / period) (a piston wave maker).
+  // Prescribed motion, s = sin(2 pi t / period): a turn by angle s about `axis` through `pivot`, then a
+  // shift by amplitude s: centre(t) = pivot + R(angle s) (start - pivot) + amplitude s, orientation R(angle s)
+  // (a piston and/or a flap wave maker; scene.h, BodySpec).
   BodyVector start{}, amplitude{};
   double period = 0.0;  // [s]
+  double angle = 0.0;   // [rad]
+  BodyVector axis{0.0, 0.0, 1.0}, pivot{};
   double time = 0.0;    // its own clock [s], advanced with every step
   // State
   BodyVector centre{}, velocity{}, omega{};
@@ -49,8 +53,12 @@ struct RigidBody {
 // v (symplectic Euler, the fluid's forces of this step), g the scene's gravity. Then the walls of box
 // containers: corners behind a wall are pushed out and given an inelastic impulse at the contact
 // (rigid_body.cpp); bodies touching each other are handled after all have moved (body_contact.h).
-// Fixed bodies do not move; prescribed ones follow their oscillation (the fluid's force on them is
+// Fixed bodies do not move; prescribed ones follow their oscillation (prescribed_pose) (the fluid's force on them is
 // recorded, not applied).
 void advance_body(RigidBody& b, const SimConstants& c, double dt);
+
+// The pose and velocities of a prescribed body at time t [s] (its oscillation; see RigidBody): sets centre,
+// orientation, velocity and omega.
+void prescribed_pose(RigidBody& b, double t);
 
 }  // namespace sph

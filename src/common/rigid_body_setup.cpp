@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "body_math.h"
 #include "setup_checks.h"
 
 namespace sph {
@@ -30,6 +31,15 @@ void bounds(const BodySpec& b, Vec3d& lo, Vec3d& hi) {
     lo[std::size_t(i)] = b.sphere ? b.center[std::size_t(i)] - b.radius : b.min[std::size_t(i)];
     hi[std::size_t(i)] = b.sphere ? b.center[std::size_t(i)] + b.radius : b.max[std::size_t(i)];
   }
+}
+
+// The bounding box of body b at its current pose (a box's corners turned by its orientation).
+void pose_bounds(const RigidBody& b, Vec3d& lo, Vec3d& hi) {
+  const Eigen::Matrix3d R = quaternion(b.orientation).toRotationMatrix();
+  const Eigen::Vector3d h = e3(b.half_extent);
+  const Eigen::Vector3d reach = b.sphere ? h : Eigen::Vector3d(R.cwiseAbs() * h);
+  lo = b3(e3(b.centre) - reach);
+  hi = b3(e3(b.centre) + reach);
 }
 
 // The first box container whose walls the box [lo, hi] crosses (not through an open top), or -1.
@@ -80,6 +90,9 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     b.motion = spec.prescribed ? BodyMotion::Prescribed : spec.free ? BodyMotion::Free : BodyMotion::Fixed;
     b.amplitude = spec.amplitude;
     b.period = spec.period;
+    b.angle = spec.angle;
+    b.axis = spec.axis;
+    b.pivot = spec.pivot;
     const double pi = 3.14159265358979323846;
     const double ex = hi[0] - lo[0], ey = hi[1] - lo[1], ez = hi[2] - lo[2];
     const double volume = spec.sphere ? 4.0 / 3.0 * pi * spec.radius * spec.radius * spec.radius : ex * ey * ez;
@@ -95,12 +108,17 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
       b.centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
     }
     b.start = b.centre;
-    if (spec.prescribed) {  // its whole stroke must stay inside the containers
-      Vec3d lo2 = lo, hi2 = hi;
-      for (std::size_t a = 0; a < 3; ++a) lo2[a] -= std::fabs(spec.amplitude[a]), hi2[a] += std::fabs(spec.amplitude[a]);
-      const int32_t through = crossed_container(c, lo2, hi2);
-      if (through >= 0)
-        refuse("its oscillation carries it through a wall of boundaries." + std::to_string(through) + "; lower the amplitude");
+    if (spec.prescribed) {  // its whole stroke must stay inside the containers: 41 poses over a period
+      for (int k = 0; k <= 40; ++k) {
+        RigidBody pose = b;
+        prescribed_pose(pose, b.period * k / 40.0);
+        Vec3d plo, phi;
+        pose_bounds(pose, plo, phi);
+        const int32_t through = crossed_container(c, plo, phi);
+        if (through >= 0)
+          refuse("its oscillation carries it through a wall of boundaries." + std::to_string(through) +
+                 "; lower the amplitude or angle");
+      }
     }
     // Its particles: the body alone as an obstacle (its own volumes), then relative to its centre.
     SimConstants alone = c;

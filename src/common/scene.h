@@ -70,8 +70,14 @@ struct BodySpec {
   double mass = 0.0;    // [kg]: exactly one of the two is given
   bool free = true;     // "motion": "free" (moved by the fluid and gravity), "fixed" or "prescribed"
   bool prescribed = false;
-  Vec3d amplitude{};    // prescribed: centre(t) = start + amplitude sin(2 pi t / period) [m]
+  // prescribed: with s = sin(2 pi t / period), the body turns by angle s about the axis through pivot and
+  // moves by amplitude s: centre(t) = pivot + R(angle s) (start - pivot) + amplitude s (a piston and/or a
+  // flap wave maker)
+  Vec3d amplitude{};    // [m]
   double period = 0.0;  // [s]
+  double angle = 0.0;   // [rad] (the scene gives degrees)
+  Vec3d axis{0.0, 0.0, 1.0};  // unit
+  Vec3d pivot{};        // [m]
   double slip = 1.0;    // as a shape's: the friction factor of its particles is 1 - slip
 };
 

@@ -550,13 +550,29 @@ Scene read_scene(const json& root, const std::string& source) {
       b.free = motion == 0;
       b.prescribed = motion == 2;
       if (b.prescribed != br.has("oscillation"))
-        br.missing("oscillation", "goes with \"motion\": \"prescribed\" and only with it: {\"amplitude\": [x, y, z] (m), \"period\": s}");
+        br.missing("oscillation", "goes with \"motion\": \"prescribed\" and only with it: {\"amplitude\": [x, y, z] (m), "
+                                  "\"period\": s} for a piston, {\"angle\": degrees, \"axis\": [x, y, z], \"pivot\": [x, y, z] (m), "
+                                  "\"period\": s} for a flap, or both");
       if (b.prescribed) {
         ObjectReader orr(br.raw("oscillation"), source, br.key_path("oscillation"));
-        orr.allow({"amplitude", "period"});
-        b.amplitude = orr.required_vec3("amplitude");
+        orr.allow({"amplitude", "period", "angle", "axis", "pivot"});
+        if (!orr.has("amplitude") && !orr.has("angle"))
+          orr.missing("amplitude", "give a translation amplitude [x, y, z] (m), a rotation angle (degrees) with its axis and pivot, or both");
+        b.amplitude = orr.vec3("amplitude", b.amplitude);
         if (!orr.has("period")) orr.missing("period", "is required (seconds)");
         b.period = orr.number("period", 1.0, 0.0, 1e6, true);
+        if (orr.has("angle")) {
+          b.angle = orr.number("angle", 0.0, -180.0, 180.0) * 3.14159265358979323846 / 180.0;
+          if (!orr.has("axis") || !orr.has("pivot"))
+            orr.missing(orr.has("axis") ? "pivot" : "axis", "a rotation needs its axis (a direction) and pivot (a point the axis runs through, m)");
+          const Vec3d axis = orr.required_vec3("axis");
+          const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+          if (!(len > 0.0)) fail(source, orr.key_path("axis"), "expected a non-zero direction");
+          b.axis = {axis[0] / len, axis[1] / len, axis[2] / len};
+          b.pivot = orr.required_vec3("pivot");
+        } else if (orr.has("axis") || orr.has("pivot")) {
+          orr.missing("angle", "axis and pivot describe a rotation: give its angle (degrees) too");
+        }
         orr.finish();
       }
       b.slip = br.number("slip", 1.0, 0.0, 1.0);
