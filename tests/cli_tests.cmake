@@ -406,3 +406,23 @@ sph_cli_test(bodies_flap_without_pivot
   --exit 1 --stderr "bodies.0.oscillation.pivot" --stderr "axis"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/wave_maker.json
      "--set=bodies.0.oscillation={\"angle\": 5, \"axis\": [0, 0, 1], \"period\": 0.8}" --steps 1 --out ${SPH_CLI_OUT}/bodies_pivot)
+
+# --- no leaks (issue 13): every shipped scene with walls, as shipped (or coarser where named), checked after
+# every step: no fluid particle ever gets more than one spacing deep into a wall, obstacle, mesh or body
+# (sph_run warns "deep into a solid" then; solid_penetration.h). Times cover the first impacts.
+function(sph_leak_test scene)
+  sph_cli_test(leak_${scene}
+    --exit 0 --stdout "deepest_in_solid:" --no-stderr "deep into a solid" --no-stderr "left the domain"
+    -- ${SPH_RUN} ${SPH_CLI_SCENES}/${scene}.json --backend host --metrics-every 0 --frames-every 0 --quiet ${ARGN}
+       --out ${SPH_CLI_OUT}/leak_${scene})
+  set_tests_properties(cli_leak_${scene} PROPERTIES TIMEOUT 300 LABELS "cli;leak")
+endfunction()
+sph_leak_test(dam_break)                                  # penalty walls, 0.3 s
+sph_leak_test(obstacles)                                  # a sphere and a quadric, 0.6 s
+sph_leak_test(mesh_obstacle --time 0.6)                   # the cup, hit at about 0.25 s
+sph_leak_test(floating_box --time 0.6)                    # the box lands on the water
+sph_leak_test(wave_maker --set resolution.spacing=0.02 --time 2)
+sph_leak_test(dam_break_obstacle --set resolution.spacing=0.05 --time 2)
+sph_leak_test(water_jet --set resolution.particles_across=7 --time 1.2)
+sph_leak_test(viscosity_cubes)
+sph_leak_test(hydrostatic_tank)

@@ -7,6 +7,7 @@
 
 #include "common/kernels.h"
 #include "common/metrics.h"
+#include "common/solid_penetration.h"
 #include "physics_helpers.h"
 
 using Catch::Matchers::WithinAbs;
@@ -73,4 +74,42 @@ TEST_CASE("dam_break_obstacle: before the dam breaks H4 reads the column's depth
   // The column fills 11 layers of 0.05 m: 0.55 m.
   CHECK_THAT(sph::probe_depth(c, sim.particles(), scene.probes[3].position), WithinRel(0.55, 0.01));
   for (int i = 0; i < 3; ++i) CHECK(sph::probe_depth(c, sim.particles(), scene.probes[i].position) == 0.0);
+}
+
+TEST_CASE("the leak check measures how deep fluid is inside obstacles, containers and bodies", "[probes][leaks]") {
+  // solid_penetration.h, which sph_run's deepest_in_solid column and the cli_leak_* tests rely on: particles
+  // put where the depth is known.
+  const auto state = [](std::initializer_list<sph::Vec3> points) {
+    sph::ParticleState ps;
+    int id = 0;
+    for (const sph::Vec3& x : points) ps.append(sph::Spawn{x, sph::Vec3{0, 0, 0}, 0.0f, 1000.0f, 0, id++});
+    return ps;
+  };
+  SECTION("a box obstacle and the container (dam_break_obstacle)") {
+    sph::Scene scene = sph_test::scene_file("dam_break_obstacle.json", {"resolution.spacing=0.05"});
+    sph::Simulation sim(scene, sph_test::cpu_factory(), 0.01);
+    const sph::SimConstants& c = sim.setup().constants;
+    // 3 cm below the box's top face (its sides are 8 cm away), 2 cm outside the tank's near wall, free fluid.
+    const sph::ParticleState ps = state({{0.744f, 0.131f, 0.5f}, {-0.02f, 0.3f, 0.5f}, {1.5f, 0.3f, 0.5f}});
+    const sph::Penetration p = sph::solid_penetration(c, sim.setup().meshes, sim.backend().bodies(), ps, 0.01);
+    CHECK_THAT(p.deepest, WithinAbs(0.03, 1e-6));
+    CHECK(p.count == 2);
+    CHECK(sph::solid_penetration(c, {}, {}, state({{1.5f, 0.3f, 0.5f}}), 0.0).deepest == 0.0);
+  }
+  SECTION("a rigid body at its current pose (floating_box) and a mesh (mesh_obstacle's cup)") {
+    sph::Simulation sim(sph_test::scene_file("floating_box.json"), sph_test::cpu_factory(), 0.01);
+    const sph::RigidBody& body = sim.backend().bodies().at(0);  // 0.08 x 0.06 x 0.08 m, centre (0.2, 0.19, 0.1)
+    const sph::Vec3 centre{float(body.centre[0]), float(body.centre[1]), float(body.centre[2])};
+    const sph::Penetration p = sph::solid_penetration(sim.setup().constants, {}, sim.backend().bodies(),
+                                                      state({centre + sph::Vec3{0.0f, 0.02f, 0.0f}}), 0.005);
+    CHECK_THAT(p.deepest, WithinAbs(0.01, 1e-6));  // 1 cm below its top face
+    CHECK(p.count == 1);
+
+    sph::Simulation cup(sph_test::scene_file("mesh_obstacle.json", {"resolution.particles_across=8"}), sph_test::cpu_factory(), 0.01);
+    // The cup (radius 0.08 m about (0.42, z = 0.1), walls 0.024 m thick): the middle of its wall, 0.012 m deep.
+    const sph::Penetration q = sph::solid_penetration(cup.setup().constants, cup.setup().meshes, {},
+                                                      state({{0.42f + 0.068f, 0.08f, 0.1f}}), 0.005);
+    CHECK_THAT(q.deepest, WithinAbs(0.012, 0.002));  // a polygonal cylinder: within its facets' sag
+    CHECK(q.count == 1);
+  }
 }
