@@ -426,3 +426,19 @@ sph_leak_test(dam_break_obstacle --set resolution.spacing=0.05 --time 2)
 sph_leak_test(water_jet --set resolution.particles_across=7 --time 1.2)
 sph_leak_test(viscosity_cubes)
 sph_leak_test(hydrostatic_tank)
+
+# --- mesh bodies (issue 13): a closed OBJ as a rigid body; a missing or open one is refused by name ------------
+sph_cli_test(mesh_body_floats
+  --exit 0 --stdout "bodies.0 (mesh):" --stdout "body: bodies.0 (mesh)"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json
+     "--set=bodies.0={\"type\": \"mesh\", \"file\": \"meshes/cup.obj\", \"scale\": 0.1, \"translate\": [0.2, 0.17, 0.1], \"density\": 300}"
+     --set resolution.spacing=0.0125 --steps 20 --out ${SPH_CLI_OUT}/mesh_body)
+sph_cli_test(mesh_body_open
+  --exit 1 --stderr "bodies.0 (mesh)" --stderr "open_box.obj" --stderr "open"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json
+     "--set=bodies.0={\"type\": \"mesh\", \"file\": \"${SPH_CLI_DATA}/open_box.obj\", \"scale\": 0.05, \"translate\": [0.2, 0.17, 0.1], \"density\": 300}"
+     --steps 1 --out ${SPH_CLI_OUT}/mesh_body_open)
+sph_cli_test(mesh_body_missing
+  --exit 1 --stderr "bodies.0 (mesh)" --stderr "nope.obj"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json "--set=bodies.0={\"type\": \"mesh\", \"file\": \"nope.obj\", \"density\": 300}"
+     --steps 1 --out ${SPH_CLI_OUT}/mesh_body_missing)

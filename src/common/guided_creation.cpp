@@ -267,12 +267,12 @@ void remove_points_in_meshes(const Scene& scene, const std::vector<MeshSolid>& m
 }
 
 // Removes the filled points inside a rigid body or closer than kMinWallClearance d to it, as for the shapes.
-void remove_points_in_bodies(const Scene& scene, double spacing, std::vector<FilledPoint>& points,
-                             std::vector<std::string>& report) {
-  for (std::size_t k = 0; k < scene.bodies.size(); ++k) {
+void remove_points_in_bodies(const Scene& scene, const std::vector<RigidBody>& bodies, double spacing,
+                             std::vector<FilledPoint>& points, std::vector<std::string>& report) {
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
     const std::size_t before = points.size();
     points.erase(std::remove_if(points.begin(), points.end(),
-                                [&](const FilledPoint& p) { return body_clearance(scene.bodies[k], p.pos) < kMinWallClearance * spacing; }),
+                                [&](const FilledPoint& p) { return depth_in_body(bodies[k], p.pos) > -kMinWallClearance * spacing; }),
                  points.end());
     const std::size_t removed = before - points.size();
     if (removed == 0) continue;
@@ -392,6 +392,8 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   for (const JetEmitter& j : s.jets) steady += j.steady_count(run_time);
   check_particle_budget(scene, steady, "the emitters, with the jets running for " + metres(run_time) + " s,",
                         "give the jets a lifetime or a stop time, lower the resolution");
+  // The bodies before the fluid: the fluid filled where they are is removed.
+  s.bodies = make_rigid_bodies(scene, c, s.spacing, particle_budget(scene), s.report);
 
   if (from_frame) {
     s.particles = initial_state_particles(scene, s.spacing, s.next_id);
@@ -407,7 +409,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     const std::size_t filled = points.size();
     remove_blocked_points(scene, s.spacing, stats, points, s.report);
     remove_points_in_meshes(scene, s.meshes, s.spacing, points, s.report);
-    remove_points_in_bodies(scene, s.spacing, points, s.report);
+    remove_points_in_bodies(scene, s.bodies, s.spacing, points, s.report);
     s.adjusted = s.adjusted || points.size() != filled;
     double mass = 0.0;
     for (const FilledPoint& p : points) {
@@ -441,7 +443,6 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     os << s.boundary.size() << " boundary particles in all (sph.walls = \"particles\")";
     s.report.push_back(os.str());
   }
-  s.bodies = make_rigid_bodies(scene, c, s.spacing, particle_budget(scene), s.report);
   s.blowup_speed = fallback_blowup_speed(scene, s.max_speed_of_sound, s.jets);
 }
 

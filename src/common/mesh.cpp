@@ -160,4 +160,33 @@ double mesh_signed_distance(const TriangleMesh& mesh, const MeshPoint& p) {
   return winding > 0.5 ? -std::sqrt(best) : std::sqrt(best);
 }
 
+MeshMassProperties mesh_mass_properties(const TriangleMesh& mesh) {
+  MeshMassProperties out;
+  double second[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // sum of x_i x_j dV about the origin
+  double first[3] = {0, 0, 0};
+  for (const auto& t : mesh.triangles) {
+    const MeshPoint& a = mesh.vertices[std::size_t(t[0])];
+    const MeshPoint& b = mesh.vertices[std::size_t(t[1])];
+    const MeshPoint& c = mesh.vertices[std::size_t(t[2])];
+    const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    out.volume += det / 6.0;
+    for (int i = 0; i < 3; ++i) first[i] += det / 24.0 * (a[i] + b[i] + c[i]);
+    // integral over the tetrahedron (0, a, b, c) of x_i x_j = det / 120 (sum_k p_ki p_kj + (sum_k p_ki)(sum_k p_kj))
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const double s_i = a[i] + b[i] + c[i], s_j = a[j] + b[j] + c[j];
+        second[i][j] += det / 120.0 * (a[i] * a[j] + b[i] * b[j] + c[i] * c[j] + s_i * s_j);
+      }
+  }
+  if (!(out.volume > 0.0)) return out;
+  for (int i = 0; i < 3; ++i) out.centroid[std::size_t(i)] = first[i] / out.volume;
+  double about[3][3];  // second moments about the centroid
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) about[i][j] = second[i][j] - out.volume * out.centroid[std::size_t(i)] * out.centroid[std::size_t(j)];
+  const double trace = about[0][0] + about[1][1] + about[2][2];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.inertia[std::size_t(i)][std::size_t(j)] = (i == j ? trace : 0.0) - about[i][j];
+  return out;
+}
+
 }  // namespace sph

@@ -36,4 +36,16 @@ std::string mesh_closure_problem(const TriangleMesh& mesh);
 // winding number above 1/2, [Jacobson et al. 2013]), positive outside. Brute force over the triangles.
 double mesh_signed_distance(const TriangleMesh& mesh, const MeshPoint& p);
 
+// Volume [m^3], centroid [m] and inertia tensor about the centroid per unit density [m^5] of the solid a
+// closed, outward-oriented mesh bounds: the sum over its triangles of the signed tetrahedra they span with
+// the origin (divergence theorem; the covariance form of Tonon 2004 / Blow & Binstock 2004: each tetrahedron
+// adds det(A) A C A^T, A = [a b c], C = [[2,1,1],[1,2,1],[1,1,2]] / 120, to the second moments, and the
+// inertia is trace(S) 1 - S with S taken about the centroid).
+struct MeshMassProperties {
+  double volume = 0.0;
+  MeshPoint centroid{};
+  std::array<std::array<double, 3>, 3> inertia{};
+};
+MeshMassProperties mesh_mass_properties(const TriangleMesh& mesh);
+
 }  // namespace sph

@@ -9,7 +9,7 @@
 namespace sph {
 namespace {
 
-// Contact with the walls of box containers, simple and robust: each corner of a box body (a sphere's lowest
+// Contact with the walls of box containers, simple and robust: each corner of a box body (a mesh's vertex) (a sphere's lowest
 // point towards each wall) found behind a wall is pushed back out (the body moves by the deepest
 // penetration along each wall's normal) and gets an inelastic impulse at that point, j = -v_n /
 // (1/M + n.((I^-1 (r x n)) x r)), so that it stops moving into the wall and the body turns about the contact
@@ -22,9 +22,7 @@ void contact_with_containers(RigidBody& b, const SimConstants& c) {
     for (int axis = 0; axis < 3; ++axis)
       for (const double side : {-1.0, 1.0}) points.push_back(side * b.half_extent[0] * Eigen::Vector3d::Unit(axis));
   } else {
-    for (int k = 0; k < 8; ++k)
-      points.push_back(R * Eigen::Vector3d((k & 1 ? 1 : -1) * b.half_extent[0], (k & 2 ? 1 : -1) * b.half_extent[1],
-                                           (k & 4 ? 1 : -1) * b.half_extent[2]));
+    for (const BodyVector& corner : b.hull) points.push_back(R * e3(corner));
   }
   Eigen::Vector3d x = e3(b.centre), v = e3(b.velocity), w = e3(b.omega);
   for (int32_t s = 0; s < c.num_shapes; ++s) {
@@ -68,6 +66,13 @@ BodyView RigidBody::view(const BoundaryView& local_view, float h) const {
   const auto f3 = [](const BodyVector& v) { return Vec3{float(v[0]), float(v[1]), float(v[2])}; };
   const float reach = float(radius) + h;
   return BodyView{local_view, f3(centre), col(0), col(1), col(2), f3(velocity), f3(omega), reach * reach};
+}
+
+double depth_in_body(const RigidBody& b, const BodyVector& p) {
+  const Eigen::Vector3d local = quaternion(b.orientation).conjugate() * (e3(p) - e3(b.centre));
+  if (b.sphere) return b.half_extent[0] - local.norm();
+  if (b.mesh) return -mesh_signed_distance(b.surface, {local.x(), local.y(), local.z()});
+  return (e3(b.half_extent) - local.cwiseAbs()).minCoeff();
 }
 
 void prescribed_pose(RigidBody& b, double t) {

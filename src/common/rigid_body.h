@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "boundary_particles.h"
+#include "mesh.h"
 #include "params.h"
 
 namespace sph {
@@ -27,8 +28,12 @@ struct RigidBody {
   BodyVector inertia{};       // principal moments in the body frame (its axes) [kg m^2]
   double radius = 0.0;        // of its particles about the centre [m]
   double spacing = 0.0;       // d its particles were sampled at [m]
-  BodyVector half_extent{};   // box: half sides; sphere: the radius three times [m] (contact)
+  BodyVector half_extent{};   // box: half sides; sphere: the radius three times; mesh: of its bounding box
+                              // about the centre, in its axes [m] (contact between bodies)
   bool sphere = false;
+  bool mesh = false;
+  std::vector<BodyVector> hull;  // box: its corners; mesh: its vertices; in its frame [m] (contact with walls)
+  TriangleMesh surface;          // mesh: its surface in its frame [m]
   // Prescribed motion, s = sin(2 pi t / period): a turn by angle s about `axis` through `pivot`, then a
   // shift by amplitude s: centre(t) = pivot + R(angle s) (start - pivot) + amplitude s, orientation R(angle s)
   // (a piston and/or a flap wave maker; scene.h, BodySpec).
@@ -52,10 +57,14 @@ struct RigidBody {
 // L with the rotated inertia, the orientation by the quaternion rate 0.5 [0, omega] q (normalised), x += dt
 // v (symplectic Euler, the fluid's forces of this step), g the scene's gravity. Then the walls of box
 // containers: corners behind a wall are pushed out and given an inelastic impulse at the contact
-// (rigid_body.cpp); bodies touching each other are handled after all have moved (body_contact.h).
+// (rigid_body.cpp; a mesh body's vertices stand for its corners); bodies touching each other are handled after all have moved (body_contact.h).
 // Fixed bodies do not move; prescribed ones follow their oscillation (prescribed_pose) (the fluid's force on them is
 // recorded, not applied).
 void advance_body(RigidBody& b, const SimConstants& c, double dt);
+
+// Depth [m] of world point p inside body b at its current pose (negative outside): a box's or sphere's
+// exact, a mesh's from its signed distance (mesh.h).
+double depth_in_body(const RigidBody& b, const BodyVector& p);
 
 // The pose and velocities of a prescribed body at time t [s] (its oscillation; see RigidBody): sets centre,
 // orientation, velocity and omega.

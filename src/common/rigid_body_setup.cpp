@@ -56,17 +56,32 @@ int32_t crossed_container(const SimConstants& c, const Vec3d& lo, const Vec3d& h
 
 }  // namespace
 
-double body_clearance(const BodySpec& b, const Vec3d& p) { return boundary_clearance(body_shape(b), p); }
-
 std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants& c, double spacing, double max_particles,
                                          std::vector<std::string>& report) {
   std::vector<RigidBody> out;
+  std::vector<std::pair<Vec3d, Vec3d>> boxes;  // each body's bounding box where it starts
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodySpec& spec = scene.bodies[i];
-    const std::string label = "bodies." + std::to_string(i) + (spec.sphere ? " (sphere)" : " (box)");
+    const std::string label =
+        "bodies." + std::to_string(i) + (spec.mesh ? " (mesh)" : spec.sphere ? " (sphere)" : " (box)");
     const auto refuse = [&](const std::string& why) { throw SceneError(scene.source + ": " + label + ": " + why); };
+    MeshSolid solid;  // a mesh body's surface where it starts
     Vec3d lo, hi;
-    bounds(spec, lo, hi);
+    if (spec.mesh) {
+      try {
+        solid.mesh = load_obj_mesh(spec.file, MeshPoint{spec.scale[0], spec.scale[1], spec.scale[2]},
+                                   MeshPoint{spec.translate[0], spec.translate[1], spec.translate[2]});
+      } catch (const std::exception& e) {
+        refuse(e.what());
+      }
+      const std::string problem = mesh_closure_problem(solid.mesh);
+      if (!problem.empty()) refuse(spec.file + ": " + problem + "; a body's mesh must bound a solid");
+      solid.slip = float(spec.slip);
+      lo = solid.mesh.lo;
+      hi = solid.mesh.hi;
+    } else {
+      bounds(spec, lo, hi);
+    }
     for (std::size_t a = 0; a < 3; ++a)
       if (hi[a] - lo[a] < 2.0 * spacing) {
         std::ostringstream os;
@@ -78,35 +93,73 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     if (crossed >= 0)
       refuse("it crosses a wall of boundaries." + std::to_string(crossed) + " (box container) where it starts; place it inside");
     for (std::size_t j = 0; j < i; ++j) {
-      Vec3d lo2, hi2;
-      bounds(scene.bodies[j], lo2, hi2);
+      const auto& [lo2, hi2] = boxes[j];
       bool apart = false;
       for (int a = 0; a < 3; ++a) apart = apart || hi[std::size_t(a)] <= lo2[std::size_t(a)] || hi2[std::size_t(a)] <= lo[std::size_t(a)];
       if (!apart) refuse("its bounding box overlaps that of bodies." + std::to_string(j) + " where they start");
     }
+    boxes.emplace_back(lo, hi);
     RigidBody b;
     b.label = label;
     b.sphere = spec.sphere;
+    b.mesh = spec.mesh;
     b.motion = spec.prescribed ? BodyMotion::Prescribed : spec.free ? BodyMotion::Free : BodyMotion::Fixed;
     b.amplitude = spec.amplitude;
     b.period = spec.period;
     b.angle = spec.angle;
     b.axis = spec.axis;
     b.pivot = spec.pivot;
+    Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // its principal axes in the world (columns)
     const double pi = 3.14159265358979323846;
     const double ex = hi[0] - lo[0], ey = hi[1] - lo[1], ez = hi[2] - lo[2];
-    const double volume = spec.sphere ? 4.0 / 3.0 * pi * spec.radius * spec.radius * spec.radius : ex * ey * ez;
-    b.mass = spec.mass > 0.0 ? spec.mass : spec.density * volume;
     if (spec.sphere) {
+      b.mass = spec.mass > 0.0 ? spec.mass : spec.density * 4.0 / 3.0 * pi * spec.radius * spec.radius * spec.radius;
       const double moment = 0.4 * b.mass * spec.radius * spec.radius;
       b.inertia = {moment, moment, moment};
       b.half_extent = {spec.radius, spec.radius, spec.radius};
       b.centre = spec.center;
+    } else if (spec.mesh) {  // mass properties from the surface; its frame along the principal axes
+      const MeshMassProperties props = mesh_mass_properties(solid.mesh);
+      if (!(props.volume > 0.0)) refuse(spec.file + ": it encloses no volume");
+      b.mass = spec.mass > 0.0 ? spec.mass : spec.density * props.volume;
+      Eigen::Matrix3d inertia;
+      for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) inertia(r, k) = props.inertia[std::size_t(r)][std::size_t(k)] * b.mass / props.volume;
+      // Already diagonal (a mesh along the world's axes, or one whose moments are equal in a plane, where any
+      // axes of that plane are principal): keep the world's axes, so that the body's frame and its bounding
+      // box for contact are the mesh's own.
+      const Eigen::Matrix3d off = inertia - Eigen::Matrix3d(inertia.diagonal().asDiagonal());
+      if (off.norm() <= 1e-9 * inertia.trace()) {
+        b.inertia = b3(inertia.diagonal());
+      } else {
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(inertia);
+        axes = principal.eigenvectors();
+        if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);  // a rotation, not a reflection
+        b.inertia = b3(principal.eigenvalues());
+      }
+      b.centre = props.centroid;
+      const Eigen::Quaterniond q(axes);
+      b.orientation = {q.w(), q.x(), q.y(), q.z()};
+      b.surface = solid.mesh;
+      Eigen::Vector3d reach = Eigen::Vector3d::Zero();
+      for (MeshPoint& v : b.surface.vertices) {
+        const Eigen::Vector3d local = axes.transpose() * (e3(v) - e3(b.centre));
+        v = b3(local);
+        b.hull.push_back(v);
+        reach = reach.cwiseMax(local.cwiseAbs());
+      }
+      b.surface.lo = b3(-reach);
+      b.surface.hi = b3(reach);
+      b.half_extent = b3(reach);
     } else {
+      b.mass = spec.mass > 0.0 ? spec.mass : spec.density * ex * ey * ez;
       b.inertia = {b.mass * (ey * ey + ez * ez) / 12.0, b.mass * (ex * ex + ez * ez) / 12.0, b.mass * (ex * ex + ey * ey) / 12.0};
       b.half_extent = {0.5 * ex, 0.5 * ey, 0.5 * ez};
       b.centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+      for (int k = 0; k < 8; ++k)
+        b.hull.push_back({(k & 1 ? 0.5 : -0.5) * ex, (k & 2 ? 0.5 : -0.5) * ey, (k & 4 ? 0.5 : -0.5) * ez});
     }
+    if (!(b.mass > 0.0)) refuse("its mass is not positive");
     b.start = b.centre;
     if (spec.prescribed) {  // its whole stroke must stay inside the containers: 41 poses over a period
       for (int k = 0; k <= 40; ++k) {
@@ -120,21 +173,36 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
                  "; lower the amplitude or angle");
       }
     }
-    // Its particles: the body alone as an obstacle (its own volumes), then relative to its centre.
+    // Its particles: the body alone as an obstacle (its own volumes), then in its frame (relative to its
+    // centre of mass, along its axes).
     SimConstants alone = c;
-    alone.num_shapes = 1;
-    alone.shapes[0] = body_shape(spec);
+    std::vector<MeshSolid> meshes;
+    if (spec.mesh) {
+      alone.num_shapes = 0;
+      meshes.push_back(std::move(solid));
+    } else {
+      alone.num_shapes = 1;
+      alone.shapes[0] = body_shape(spec);
+    }
     std::vector<std::string> notes;
     try {
-      b.local = sample_boundary_particles(alone, {}, spacing, max_particles, notes);
+      b.local = sample_boundary_particles(alone, meshes, spacing, max_particles, notes);
       b.spacing = spacing;
     } catch (const std::invalid_argument& e) {
       refuse(e.what());
     }
     if (b.local.size() == 0) refuse("no boundary particle samples it at spacing " + std::to_string(spacing) + " m; make it larger");
-    const Vec3 centre{float(b.centre[0]), float(b.centre[1]), float(b.centre[2])};
-    for (Vec4& p : b.local.pos_volume) {
-      p = with_w(xyz(p) - centre, p.w);
+    const Eigen::Matrix3f to_body = axes.transpose().cast<float>();
+    const Eigen::Vector3f centre = e3(b.centre).cast<float>();
+    const auto local = [&](const Vec3& x, bool point) {
+      const Eigen::Vector3f v = to_body * (point ? Eigen::Vector3f(x.x, x.y, x.z) - centre : Eigen::Vector3f(x.x, x.y, x.z));
+      return Vec3{v.x(), v.y(), v.z()};
+    };
+    for (std::size_t k = 0; k < b.local.size(); ++k) {
+      Vec4& p = b.local.pos_volume[k];
+      p = with_w(local(xyz(p), true), p.w);
+      Vec4& nd = b.local.normal_depth[k];
+      nd = with_w(local(xyz(nd), false), nd.w);
       b.radius = std::max(b.radius, double(length(xyz(p))));
     }
     regrid_boundary_particles(b.local, c.kernel.h);

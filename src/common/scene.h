@@ -59,13 +59,16 @@ struct BoundarySpec {
   Shape shape{};  // type, coefficients and geometry, ready for SimConstants
 };
 
-// A rigid body (scene key "bodies", issue 13; rigid_body.h): a box or a sphere of boundary particles that the
-// fluid pushes and that pushes the fluid (WCSPH, sph.walls = "particles").
+// A rigid body (scene key "bodies", issue 13; rigid_body.h): a box, a sphere or a closed triangle mesh of
+// boundary particles that the fluid pushes and that pushes the fluid (WCSPH, sph.walls = "particles").
 struct BodySpec {
   bool sphere = false;
+  bool mesh = false;    // a closed triangle mesh (OBJ), placed as the scene's meshes are
   Vec3d min{}, max{};   // box [m]
   Vec3d center{};       // sphere [m]
   double radius = 0.0;  // sphere [m]
+  std::string file;     // mesh: OBJ, resolved against the scene file's folder
+  Vec3d scale{1.0, 1.0, 1.0}, translate{};  // mesh: per axis, then [m]
   double density = 0.0; // [kg/m^3]; or
   double mass = 0.0;    // [kg]: exactly one of the two is given
   bool free = true;     // "motion": "free" (moved by the fluid and gravity), "fixed" or "prescribed"

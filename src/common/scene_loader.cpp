@@ -446,6 +446,27 @@ void read_solver(ObjectReader& r, Scene& s) {
   }
 }
 
+// A mesh's "file" (an OBJ, resolved against the scene file's folder), "scale" (a number or one per axis) and
+// "translate", for the scene's meshes and for mesh bodies.
+void read_mesh_placement(ObjectReader& mr, const std::string& source, std::string& file, Vec3d& scale, Vec3d& translate) {
+  if (!mr.has("file")) mr.missing("file", "is required: the path of an OBJ file, relative to the scene file");
+  const fs::path p = mr.string("file", "");
+  std::string extension = p.extension().string();
+  for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (p.empty() || extension != ".obj")
+    fail(source, mr.key_path("file"), "expected the path of a Wavefront OBJ file (.obj), not \"" + p.string() + "\"");
+  file = (p.is_absolute() ? p : fs::path(source).parent_path() / p).string();
+  if (mr.has("scale") && mr.raw("scale").is_number()) {
+    const double k = mr.number("scale", 1.0, 0.0, 1e6, true);
+    scale = {k, k, k};
+  } else {
+    scale = mr.vec3("scale", scale);
+    for (const double k : scale)
+      if (!(k > 0.0)) fail(source, mr.key_path("scale"), "expected a positive number or three positive numbers");
+  }
+  translate = mr.vec3("translate", translate);
+}
+
 // The scene in root (the file with the --set overrides applied); SceneError names source and the key.
 Scene read_scene(const json& root, const std::string& source) {
   Scene s;
@@ -501,23 +522,8 @@ Scene read_scene(const json& root, const std::string& source) {
       ObjectReader mr(ms[i], source, "meshes." + std::to_string(i));
       mr.allow({"file", "inside", "scale", "translate", "slip"});
       MeshSpec m;
-      if (!mr.has("file")) mr.missing("file", "is required: the path of an OBJ file, relative to the scene file");
-      const fs::path p = mr.string("file", "");
-      std::string extension = p.extension().string();
-      for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-      if (p.empty() || extension != ".obj")
-        fail(source, mr.key_path("file"), "expected the path of a Wavefront OBJ file (.obj), not \"" + p.string() + "\"");
-      m.file = (p.is_absolute() ? p : fs::path(source).parent_path() / p).string();
+      read_mesh_placement(mr, source, m.file, m.scale, m.translate);
       m.inside = mr.boolean("inside", false);
-      if (mr.has("scale") && mr.raw("scale").is_number()) {
-        const double k = mr.number("scale", 1.0, 0.0, 1e6, true);
-        m.scale = {k, k, k};
-      } else {
-        m.scale = mr.vec3("scale", m.scale);
-        for (const double k : m.scale)
-          if (!(k > 0.0)) fail(source, mr.key_path("scale"), "expected a positive number or three positive numbers");
-      }
-      m.translate = mr.vec3("translate", m.translate);
       m.slip = mr.number("slip", 1.0, 0.0, 1.0);
       mr.finish();
       s.meshes.push_back(m);
@@ -530,9 +536,14 @@ Scene read_scene(const json& root, const std::string& source) {
     for (std::size_t i = 0; i < bs.size(); ++i) {
       ObjectReader br(bs[i], source, "bodies." + std::to_string(i));
       BodySpec b;
-      b.sphere = br.choice<bool>("type", false, {{"box", false}, {"sphere", true}});
-      if (!br.has("type")) br.missing("type", "is required (\"box\" or \"sphere\")");
-      if (b.sphere) {
+      const int shape = br.choice<int>("type", 0, {{"box", 0}, {"sphere", 1}, {"mesh", 2}});
+      if (!br.has("type")) br.missing("type", "is required (\"box\", \"sphere\" or \"mesh\")");
+      b.sphere = shape == 1;
+      b.mesh = shape == 2;
+      if (b.mesh) {
+        br.allow({"type", "file", "scale", "translate", "density", "mass", "motion", "slip", "oscillation"});
+        read_mesh_placement(br, source, b.file, b.scale, b.translate);
+      } else if (b.sphere) {
         br.allow({"type", "center", "radius", "density", "mass", "motion", "slip", "oscillation"});
         b.center = br.required_vec3("center");
         if (!br.has("radius")) br.missing("radius", "is required");

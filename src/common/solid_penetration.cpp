@@ -3,26 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Geometry>
-
 #include "mesh.h"
 #include "setup_checks.h"
 
 namespace sph {
-
-namespace {
-
-// Depth of p inside a rigid body at its current pose [m] (negative outside).
-double body_depth(const RigidBody& b, const Vec3d& p) {
-  const Eigen::Quaterniond q(b.orientation[0], b.orientation[1], b.orientation[2], b.orientation[3]);
-  const Eigen::Vector3d local = q.conjugate() * Eigen::Vector3d(p[0] - b.centre[0], p[1] - b.centre[1], p[2] - b.centre[2]);
-  if (b.sphere) return b.half_extent[0] - local.norm();
-  double depth = b.half_extent[0] - std::fabs(local.x());
-  depth = std::min(depth, b.half_extent[1] - std::fabs(local.y()));
-  return std::min(depth, b.half_extent[2] - std::fabs(local.z()));
-}
-
-}  // namespace
 
 Penetration solid_penetration(const SimConstants& c, const std::vector<MeshSolid>& meshes,
                               const std::vector<RigidBody>& bodies, const ParticleState& ps, double threshold) {
@@ -47,7 +31,7 @@ Penetration solid_penetration(const SimConstants& c, const std::vector<MeshSolid
         depth = std::max(depth, std::sqrt(dx * dx + dy * dy + dz * dz));
       }
     }
-    for (const RigidBody& b : bodies) depth = std::max(depth, body_depth(b, p));
+    for (const RigidBody& b : bodies) depth = std::max(depth, depth_in_body(b, p));
     out.deepest = std::max(out.deepest, depth);
     if (depth > threshold) ++out.count;
   }

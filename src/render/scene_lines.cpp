@@ -165,6 +165,16 @@ void SceneLines::set_bodies(const std::vector<RigidBody>& bodies) {
         }
       continue;
     }
+    if (b.mesh) {  // its triangles' edges
+      const auto vertex = [&](int k) {
+        const MeshPoint& p = b.surface.vertices[std::size_t(k)];
+        return world(Vec3{float(p[0]), float(p[1]), float(p[2])});
+      };
+      for (const auto& t : b.surface.triangles)
+        for (int e = 0; e < 3; ++e)
+          if (t[std::size_t(e)] < t[std::size_t((e + 1) % 3)]) line(vertex(t[std::size_t(e)]), vertex(t[std::size_t((e + 1) % 3)]), colour);
+      continue;
+    }
     const float hx = float(b.half_extent[0]), hy = float(b.half_extent[1]), hz = float(b.half_extent[2]);
     Vec3 corner[8];
     for (int k = 0; k < 8; ++k) corner[k] = world(Vec3{k & 1 ? hx : -hx, k & 2 ? hy : -hy, k & 4 ? hz : -hz});
