@@ -369,9 +369,12 @@ sph_cli_test(mesh_obstacle_runs
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/mesh_obstacle.json --steps 5 --out ${SPH_CLI_OUT}/mesh_runs)
 
 # --- rigid bodies (issue 13): WCSPH only; a prescribed body needs its oscillation, inside the walls -------
-sph_cli_test(bodies_need_wcsph
-  --exit 1 --stderr "bodies" --stderr "wcsph"
-  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json --set solver=dfsph --steps 1 --out ${SPH_CLI_OUT}/bodies_dfsph)
+sph_cli_test(bodies_not_pbf
+  --exit 1 --stderr "bodies" --stderr "wcsph" --stderr "dfsph" --stderr "pbf"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json --set solver=pbf --steps 1 --out ${SPH_CLI_OUT}/bodies_pbf)
+sph_cli_test(bodies_dfsph_runs
+  --exit 0 --stdout "body: bodies.0 (box)" --stdout "solver: dfsph"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json --set solver=dfsph --steps 10 --out ${SPH_CLI_OUT}/bodies_dfsph)
 sph_cli_test(bodies_prescribed_without_oscillation
   --exit 1 --stderr "bodies.0.oscillation" --stderr "prescribed"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json --set bodies.0.motion=prescribed --steps 1 --out ${SPH_CLI_OUT}/bodies_osc)

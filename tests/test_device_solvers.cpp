@@ -101,3 +101,12 @@ TEST_CASE("device solvers: a floating box (rigid body, two-way coupling) under W
   compare_runs(scene, 40, &ref);
   CHECK(ref->backend().bodies().at(0).force[1] != 0.0);  // the fluid acted on the body
 }
+
+TEST_CASE("device solvers: a floating box under DFSPH", "[device][solvers][bodies]") {
+  // As above under DFSPH: the body's reaction sums what both pressure solves applied (src/solvers/dfsph.h).
+  const sph::Scene scene = scene_file("floating_box.json", {"resolution.spacing=0.02", "bodies.0.min=[0.16,0.12,0.06]",
+                                                             "bodies.0.max=[0.24,0.18,0.14]", "solver=dfsph"});
+  std::unique_ptr<sph::Simulation> ref;
+  compare_runs(scene, 20, &ref);
+  CHECK(ref->backend().bodies().at(0).force[1] != 0.0);
+}

@@ -63,6 +63,9 @@ SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, c
   for_each_boundary(grid.boundary, xyz(p.pos_mass[i]), k.h2, [&](int32_t, Vec3, float r2, float volume) {
     rho += rho0 * volume * cubic_spline(k, sqrtf(r2));
   });
+  for_each_body_particle(grid.bodies, grid.num_bodies, xyz(p.pos_mass[i]), k.h2, [&](int32_t, int32_t, Vec3, float r2, float volume, Vec3) {
+    rho += rho0 * volume * cubic_spline(k, sqrtf(r2));
+  });
   return rho;
 }
 
@@ -89,6 +92,9 @@ SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, con
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
     if (r2 > 0.0f) sum_grad += (rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
   });
+  for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
+    if (r2 > 0.0f) sum_grad += (rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+  });
   const float denominator = length2(sum_grad) + sum_grad2;
   const float scale = p.pos_mass[i].w * k.cubic / k.h;
   if (denominator <= kDfsphAlphaEps * scale * scale) return 0.0f;
@@ -106,6 +112,8 @@ SPH_HD inline int32_t dfsph_support(const SimConstants& c, const GridView& grid,
   const NearWalls walls = c.mirror_walls ? near_walls(c, xyz(p.pos_mass[i])) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t, int32_t, Vec3, float) { ++count; });
   for_each_boundary(grid.boundary, xyz(p.pos_mass[i]), k.h2, [&](int32_t, Vec3, float, float) { ++count; });
+  for_each_body_particle(grid.bodies, grid.num_bodies, xyz(p.pos_mass[i]), k.h2,
+                         [&](int32_t, int32_t, Vec3, float, float, Vec3) { ++count; });
   return float(count) >= kDfsphMinSupport * bulk ? 1 : 0;
 }
 
@@ -130,6 +138,10 @@ SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& gr
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
     if (r2 > 0.0f) rate += rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi, xib);
+  });
+  // A rigid body's particles move with it: the rate sees v_i - v_b.
+  for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3 vb) {
+    if (r2 > 0.0f) rate += rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi - vb, xib);
   });
   return rate;
 }
@@ -177,7 +189,34 @@ SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const Grid
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
     if (r2 > 0.0f) acc -= (rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
   });
+  for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
+    if (r2 > 0.0f) acc -= (rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+  });
   return acc;
+}
+
+// What the pressure solves did between fluid particle i and rigid body `body` ([AIA12] section 4 with [BK15]):
+// the reaction to the body's terms of dfsph_pressure_acceleration, force m_i sum_b rho0 V_b (kappa_i / rho_i)
+// grad W_ib [N] and its torque about the body's centre [N m], with kappa_i the stiffness the solve applied in
+// all (the kept pressure over rho_i: the solves' velocity changes are linear in kappa, so the sum of what
+// every iteration applied is the term of the total). Summed over the fluid it is minus the momentum the solve gave the fluid
+// through the body, per dt.
+SPH_HD inline void dfsph_body_reaction(const SimConstants& c, const GridView& grid, const ParticleView& p, float kappa_i,
+                                       int32_t i, int32_t body, Vec3& force, Vec3& torque) {
+  force = torque = Vec3{0.0f, 0.0f, 0.0f};
+  if (p.age[i] < 0.0f) return;
+  const KernelCoeffs& k = c.kernel;
+  const float ki = kappa_i / p.density[i];
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  const BodyView& bv = grid.bodies[body];
+  const float mi = p.pos_mass[i].w;
+  for_each_body_particle(&bv, 1, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
+    if (!(r2 > 0.0f)) return;
+    const Vec3 f = (mi * rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    force += f;
+    torque += cross(xi - bv.centre - xib, f);
+  });
 }
 
 }  // namespace sph

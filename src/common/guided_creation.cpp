@@ -392,8 +392,9 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   for (const JetEmitter& j : s.jets) steady += j.steady_count(run_time);
   check_particle_budget(scene, steady, "the emitters, with the jets running for " + metres(run_time) + " s,",
                         "give the jets a lifetime or a stop time, lower the resolution");
-  // The bodies before the fluid: the fluid filled where they are is removed.
-  s.bodies = make_rigid_bodies(scene, c, s.spacing, particle_budget(scene), s.report);
+  // The bodies before the fluid (the fluid filled where they are is removed), their particles once the
+  // domain is known.
+  s.bodies = place_rigid_bodies(scene, c, s.spacing);
 
   if (from_frame) {
     s.particles = initial_state_particles(scene, s.spacing, s.next_id);
@@ -443,6 +444,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     os << s.boundary.size() << " boundary particles in all (sph.walls = \"particles\")";
     s.report.push_back(os.str());
   }
+  sample_rigid_bodies(scene, c, s.spacing, particle_budget(scene), s.bodies, s.report);
   s.blowup_speed = fallback_blowup_speed(scene, s.max_speed_of_sound, s.jets);
 }
 

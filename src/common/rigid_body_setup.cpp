@@ -56,8 +56,7 @@ int32_t crossed_container(const SimConstants& c, const Vec3d& lo, const Vec3d& h
 
 }  // namespace
 
-std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants& c, double spacing, double max_particles,
-                                         std::vector<std::string>& report) {
+std::vector<RigidBody> place_rigid_bodies(const Scene& scene, const SimConstants& c, double spacing) {
   std::vector<RigidBody> out;
   std::vector<std::pair<Vec3d, Vec3d>> boxes;  // each body's bounding box where it starts
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -173,11 +172,33 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
                  "; lower the amplitude or angle");
       }
     }
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+void sample_rigid_bodies(const Scene& scene, const SimConstants& c, double spacing, double max_particles,
+                         std::vector<RigidBody>& bodies, std::vector<std::string>& report) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    RigidBody& b = bodies[i];
+    const BodySpec& spec = scene.bodies[i];
+    const auto refuse = [&](const std::string& why) { throw SceneError(scene.source + ": " + b.label + ": " + why); };
+    const Eigen::Matrix3d axes = quaternion(b.orientation).toRotationMatrix();
     // Its particles: the body alone as an obstacle (its own volumes), then in its frame (relative to its
     // centre of mass, along its axes).
     SimConstants alone = c;
     std::vector<MeshSolid> meshes;
-    if (spec.mesh) {
+    if (b.mesh) {  // its surface back where it is
+      MeshSolid solid;
+      solid.mesh = b.surface;
+      solid.slip = float(spec.slip);
+      for (std::size_t v = 0; v < solid.mesh.vertices.size(); ++v)
+        solid.mesh.vertices[v] = b3(e3(b.centre) + axes * e3(b.surface.vertices[v]));
+      for (std::size_t a = 0; a < 3; ++a) {
+        solid.mesh.lo[a] = solid.mesh.hi[a] = solid.mesh.vertices.front()[a];
+        for (const MeshPoint& v : solid.mesh.vertices)
+          solid.mesh.lo[a] = std::min(solid.mesh.lo[a], v[a]), solid.mesh.hi[a] = std::max(solid.mesh.hi[a], v[a]);
+      }
       alone.num_shapes = 0;
       meshes.push_back(std::move(solid));
     } else {
@@ -198,6 +219,7 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
       const Eigen::Vector3f v = to_body * (point ? Eigen::Vector3f(x.x, x.y, x.z) - centre : Eigen::Vector3f(x.x, x.y, x.z));
       return Vec3{v.x(), v.y(), v.z()};
     };
+    b.radius = 0.0;
     for (std::size_t k = 0; k < b.local.size(); ++k) {
       Vec4& p = b.local.pos_volume[k];
       p = with_w(local(xyz(p), true), p.w);
@@ -207,12 +229,17 @@ std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants&
     }
     regrid_boundary_particles(b.local, c.kernel.h);
     std::ostringstream os;
-    os << label << ": " << b.local.size() << " boundary particles, mass " << b.mass << " kg, "
+    os << b.label << ": " << b.local.size() << " boundary particles, mass " << b.mass << " kg, "
        << (spec.prescribed ? "prescribed" : spec.free ? "free" : "fixed");
     report.push_back(os.str());
-    out.push_back(std::move(b));
   }
-  return out;
+}
+
+std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants& c, double spacing, double max_particles,
+                                         std::vector<std::string>& report) {
+  std::vector<RigidBody> bodies = place_rigid_bodies(scene, c, spacing);
+  sample_rigid_bodies(scene, c, spacing, max_particles, bodies, report);
+  return bodies;
 }
 
 }  // namespace sph

@@ -20,4 +20,11 @@ namespace sph {
 std::vector<RigidBody> make_rigid_bodies(const Scene& scene, const SimConstants& c, double spacing, double max_particles,
                                          std::vector<std::string>& report);
 
+// make_rigid_bodies in its two halves, for the set-up, which removes the fluid where the bodies are before
+// it knows the domain the spheres' sampling needs: the bodies placed, weighed and checked, without
+// particles; then their particles (c with its grid), one report line each.
+std::vector<RigidBody> place_rigid_bodies(const Scene& scene, const SimConstants& c, double spacing);
+void sample_rigid_bodies(const Scene& scene, const SimConstants& c, double spacing, double max_particles,
+                         std::vector<RigidBody>& bodies, std::vector<std::string>& report);
+
 }  // namespace sph

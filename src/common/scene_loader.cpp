@@ -666,9 +666,9 @@ Scene read_scene(const json& root, const std::string& source) {
   read_solver(r, s);
   if (!s.bodies.empty() && !s.boundary_particles)
     fail(source, "bodies", "rigid bodies are made of boundary particles: set \"sph\": {\"walls\": \"particles\"} (--set sph.walls=particles)");
-  if (!s.bodies.empty() && s.solver != Solver::Wcsph)
-    fail(source, "bodies", "rigid bodies are coupled to the wcsph solver only so far, not to \"" + std::string(solver_name(s.solver)) +
-                           "\" (allowed: \"solver\": \"wcsph\")");
+  if (!s.bodies.empty() && s.solver == Solver::Pbf)
+    fail(source, "bodies", "rigid bodies are coupled to the wcsph and dfsph solvers only so far, not to \"pbf\" "
+                           "(allowed: \"solver\": \"wcsph\" or \"dfsph\")");
   if (!s.meshes.empty() && !s.boundary_particles)
     fail(source, "meshes", "triangle meshes are walls of boundary particles only: set \"sph\": {\"walls\": \"particles\"} "
                            "(--set sph.walls=particles); mirror and penalty walls know the analytic shapes of \"boundaries\"");

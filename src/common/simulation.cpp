@@ -210,8 +210,8 @@ void Simulation::set_constants(const SimConstants& constants) {
 }
 
 std::string Simulation::add_body(const BodySpec& body) {
-  if (scene_.solver != Solver::Wcsph || !scene_.boundary_particles)
-    return "rigid bodies need the wcsph solver and \"sph\": {\"walls\": \"particles\"}";
+  if (scene_.solver == Solver::Pbf || !scene_.boundary_particles)
+    return "rigid bodies need the wcsph or dfsph solver and \"sph\": {\"walls\": \"particles\"}";
   Scene alone = scene_;
   alone.bodies = {body};
   std::vector<std::string> report;

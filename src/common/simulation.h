@@ -81,7 +81,7 @@ class Simulation {
   // One time step; throws BlowUp when the state has become unphysical.
   void advance();
   // Adds a rigid body between steps (the demo's D key): sampled as make_rigid_bodies does, at rest. Returns ""
-  // or why it was not added (bodies need WCSPH and walls of boundary particles; it must lie inside the
+  // or why it was not added (bodies need WCSPH or DFSPH and walls of boundary particles; it must lie inside the
   // containers).
   std::string add_body(const BodySpec& body);
 

@@ -162,6 +162,34 @@ struct ApplyFn {
   }
 };
 
+// Component `component` (0-2: force x, y, z [N]; 3-5: torque [N m]) of what fluid particle i did to body `body`
+// this step: the reaction to its non-pressure forces from the body's particles (friction; forces.h,
+// body_reaction) and to what both pressure solves applied through them (dfsph.h, dfsph_body_reaction, with
+// the stiffnesses kept: kappa = P / rho for the density solve, kappa_v = P_v dt / (rho dt) for the divergence
+// solve).
+template <class C>
+struct BodyReactionFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  int32_t body;
+  int32_t component;
+  float dt;
+  SPH_KERNEL_FN double operator()(int32_t i) const {
+    Vec3 force, torque, f, t;
+    body_reaction<NonPressureForces>(*c, g, p, i, body, force, torque);
+    dfsph_body_reaction(*c, g, p, p.pressure[i] / p.density[i], i, body, f, t);
+    force += f, torque += t;
+    if ((*c).dfsph.divergence_solver) {
+      dfsph_body_reaction(*c, g, p, p.near_pressure[i] / (dt * p.density[i]), i, body, f, t);
+      force += f, torque += t;
+    }
+    const Vec3 v = component < 3 ? force : torque;
+    const int32_t k = component % 3;
+    return double(k == 0 ? v.x : k == 1 ? v.y : v.z);
+  }
+};
+
 // One of the two solves ([BK15] algorithms 2 and 3): warm start, then corrections until the mean residual is
 // within tolerance (checked every check_every iterations once min_iterations are done) or max_iterations.
 // Returns the iterations; error: the mean error the solve ended at; capped: it stopped at the cap above tolerance.
@@ -202,10 +230,15 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
     case Phase::Forces:
       x.for_each(ForceInputsFn{x.particles()});
       x.for_each(wcsph::ForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
+      if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
       return;
     case Phase::Predict: x.for_each(PredictVelocityFn{x.particles(), dt}); return;
     case Phase::DensitySolve:
       stats.density_iterations = solve<Exec, true>(x, dt, stats.density_error, stats.density_capped);
+      // Rigid bodies: moved by what the fluid did to them this step, before the fluid moves (Correct).
+      update_bodies_with(x, dt, [&](int32_t body, int32_t component) {
+        return BodyReactionFn<C>{x.constants(), x.grid(), x.particles(), body, component, dt};
+      });
       return;
     case Phase::Correct: x.for_each(AdvectFn<C>{x.constants(), x.particles(), dt}); return;
     case Phase::Boundaries:

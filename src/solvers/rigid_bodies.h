@@ -1,8 +1,10 @@
 // Rigid bodies' two-way coupling in a step (issue 13; the body's state and integration: src/common/rigid_body.h):
 // the fluid's reaction on each free body summed over the particles in the back end's fixed order (the same
 // bits on every back end), then the body advanced on the host and its new pose handed to the loops.
-// WCSPH only (the forces phase calls update_bodies after the fluid's forces, so the body feels exactly
-// the reaction to what the fluid felt; scenes with bodies under DFSPH or PBF are refused at load).
+// WCSPH: the forces phase calls update_bodies after the fluid's forces, so the body feels exactly the
+// reaction to what the fluid felt. DFSPH (src/solvers/dfsph.h): after the density solve, the reaction to the
+// non-pressure forces and to everything both pressure solves applied. Scenes with bodies under PBF are
+// refused at load.
 #pragma once
 
 #include <cstdint>
@@ -45,12 +47,13 @@ struct BodyReactionFn {
   }
 };
 
-// The fluid's force and torque on every moving body (into RigidBody::force, torque), then one step dt of
-// each (advance_body: a free body by them, a prescribed one by its clock; dt = 0 at the initial forces: the
-// force is recorded, nothing moves), the contacts between bodies, then the new poses to the loops.
-template <class Exec>
-void update_bodies(Exec& x, float dt) {
-  using C = typename Exec::Constants;
+// The fluid's force and torque on every moving body (into RigidBody::force, torque), each component the
+// back end's deterministic sum over the particles of make(body, component) (a functor returning the
+// particle's share as a double), then one step dt of each (advance_body: a free body by them, a prescribed one
+// by its clock; dt = 0 at the initial forces: the force is recorded, nothing moves), the contacts between
+// bodies, then the new poses to the loops.
+template <class Exec, class MakeReaction>
+void update_bodies_with(Exec& x, float dt, MakeReaction make) {
   std::vector<RigidBody>& bodies = x.bodies();
   if (bodies.empty()) return;
   const SimConstants& c = x.host_constants();
@@ -59,16 +62,24 @@ void update_bodies(Exec& x, float dt) {
     RigidBody& b = bodies[k];
     if (b.motion == BodyMotion::Fixed) continue;
     double value[6];
-    with_force_model(c, [&](auto model) {
-      for (int32_t component = 0; component < 6; ++component)
-        value[component] = x.sum(n, BodyReactionFn<C, decltype(model)>{x.constants(), x.grid(), x.particles(), int32_t(k), component});
-    });
+    for (int32_t component = 0; component < 6; ++component) value[component] = x.sum(n, make(int32_t(k), component));
     b.force = {value[0], value[1], value[2]};
     b.torque = {value[3], value[4], value[5]};
     advance_body(b, c, double(dt));
   }
   if (dt > 0.0f) contact_between_bodies(bodies);
   x.upload_bodies();
+}
+
+// WCSPH: the reaction to the forces phase (body_reaction under the scene's force model).
+template <class Exec>
+void update_bodies(Exec& x, float dt) {
+  using C = typename Exec::Constants;
+  with_force_model(x.host_constants(), [&](auto model) {
+    update_bodies_with(x, dt, [&](int32_t body, int32_t component) {
+      return BodyReactionFn<C, decltype(model)>{x.constants(), x.grid(), x.particles(), body, component};
+    });
+  });
 }
 
 }  // namespace sph
