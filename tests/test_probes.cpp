@@ -66,14 +66,14 @@ TEST_CASE("a probe measures along gravity, whatever its direction, and reads 0 w
   CHECK(sph::probe_depth(none.c, none.ps, {0.2, 0.1, 0.1}) == 0.0);
 }
 
-TEST_CASE("dam_break_obstacle: before the dam breaks H4 reads the column's depth and H1 to H3 are dry", "[probes][scenes]") {
+TEST_CASE("dam_break_obstacle: before the dam breaks H4 reads the column's depth, H1 to H3 and box_front are dry", "[probes][scenes]") {
   sph::Scene scene = sph_test::scene_file("dam_break_obstacle.json", {"resolution.spacing=0.05"});
-  REQUIRE(scene.probes.size() == 4);
+  REQUIRE(scene.probes.size() == 5);  // H1 to H4, box_front
   sph::Simulation sim(scene, sph_test::cpu_factory(), 0.01);
   const sph::SimConstants& c = sim.setup().constants;
   // The column fills 11 layers of 0.05 m: 0.55 m.
   CHECK_THAT(sph::probe_depth(c, sim.particles(), scene.probes[3].position), WithinRel(0.55, 0.01));
-  for (int i = 0; i < 3; ++i) CHECK(sph::probe_depth(c, sim.particles(), scene.probes[i].position) == 0.0);
+  for (const int i : {0, 1, 2, 4}) CHECK(sph::probe_depth(c, sim.particles(), scene.probes[std::size_t(i)].position) == 0.0);
 }
 
 TEST_CASE("the leak check measures how deep fluid is inside obstacles, containers and bodies", "[probes][leaks]") {

@@ -13,142 +13,14 @@
 
 #include "scene.h"
 #include "scene_file.h"
+#include "scene_reader.h"
 
 namespace sph {
+
+using namespace scene_reading;
+
 namespace {
 
-using json = nlohmann::json;
-namespace fs = std::filesystem;
-
-[[noreturn]] void fail(const std::string& source, const std::string& key, const std::string& what) {
-  throw SceneError(source + ": " + (key.empty() ? std::string() : key + ": ") + what);
-}
-
-// Reads the keys of one JSON object, remembers which were used, and rejects the rest.
-class ObjectReader {
- public:
-  ObjectReader(const json& j, std::string source, std::string path)
-      : j_(j), source_(std::move(source)), path_(std::move(path)) {
-    if (!j_.is_object()) fail(source_, path_.empty() ? "scene" : path_, "expected a JSON object");
-  }
-
-  bool has(const std::string& key) const { return j_.contains(key); }
-  std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-  const json& raw(const std::string& key) {
-    used_.insert(key);
-    return j_.at(key);
-  }
-
-  double number(const std::string& key, double def, double lo, double hi, bool lo_open = false) {
-    if (!has(key)) return def;
-    const json& v = raw(key);
-    if (!v.is_number()) fail(source_, key_path(key), "expected a number, got " + std::string(v.type_name()));
-    const double x = v.get<double>();
-    check_range(key, x, lo, hi, lo_open);
-    return x;
-  }
-
-  void check_range(const std::string& key, double x, double lo, double hi, bool lo_open) const {
-    if (!std::isfinite(x)) fail(source_, key_path(key), "must be a finite number");
-    if (x < lo || (lo_open && x == lo) || x > hi) {
-      std::ostringstream os;
-      os << "value " << x << " is out of range: allowed " << (lo_open ? "(" : "[") << lo << ", " << hi << "]";
-      fail(source_, key_path(key), os.str());
-    }
-  }
-
-  bool boolean(const std::string& key, bool def) {
-    if (!has(key)) return def;
-    const json& v = raw(key);
-    if (!v.is_boolean()) fail(source_, key_path(key), "expected true or false");
-    return v.get<bool>();
-  }
-
-  std::string string(const std::string& key, const std::string& def) {
-    if (!has(key)) return def;
-    const json& v = raw(key);
-    if (!v.is_string()) fail(source_, key_path(key), "expected a string");
-    return v.get<std::string>();
-  }
-
-  template <class E>
-  E choice(const std::string& key, E def, const std::vector<std::pair<std::string, E>>& names) {
-    if (!has(key)) return def;
-    const std::string s = string(key, "");
-    std::string allowed;
-    for (const auto& [name, value] : names) {
-      if (name == s) return value;
-      allowed += (allowed.empty() ? "" : ", ") + ("\"" + name + "\"");
-    }
-    fail(source_, key_path(key), "unknown name \"" + s + "\"; allowed: " + allowed);
-  }
-
-  Vec3d vec3(const std::string& key, Vec3d def, double limit = 1e6) {
-    if (!has(key)) return def;
-    const json& v = raw(key);
-    if (!v.is_array() || v.size() != 3) fail(source_, key_path(key), "expected an array of 3 numbers");
-    Vec3d out{};
-    for (int i = 0; i < 3; ++i) {
-      if (!v[i].is_number()) fail(source_, key_path(key), "expected an array of 3 numbers");
-      out[i] = v[i].get<double>();
-      check_range(key, out[i], -limit, limit, false);
-    }
-    return out;
-  }
-
-  // A whole number in [lo, hi].
-  long integer(const std::string& key, long def, long lo, long hi) {
-    if (!has(key)) return def;
-    const json& v = raw(key);
-    if (!v.is_number_integer()) fail(source_, key_path(key), "expected a whole number");
-    const long x = v.get<long>();
-    if (x < lo || x > hi)
-      fail(source_, key_path(key),
-           "value " + std::to_string(x) + " is out of range: allowed [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return x;
-  }
-
-  Vec3d required_vec3(const std::string& key) {
-    if (!has(key)) missing(key, "is required");
-    return vec3(key, {});
-  }
-
-  // Rejects keys that were never read: a typo must not be silently ignored.
-  void finish() const {
-    for (auto it = j_.begin(); it != j_.end(); ++it) {
-      if (used_.count(it.key()) || it.key() == "comment") continue;
-      std::string allowed;
-      for (const auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
-      fail(source_, key_path(it.key()), "unknown key; allowed here: " + allowed);
-    }
-  }
-
-  void allow(std::initializer_list<const char*> keys) {
-    for (const char* k : keys) known_.insert(k);
-  }
-
-  // Fails for a required key (or choice of keys) that is missing, naming the keys of this object that are
-  // not allowed here: a misspelt required key must be reported as the typo it is.
-  [[noreturn]] void missing(const std::string& key, const std::string& what) const {
-    std::string unknown;
-    for (auto it = j_.begin(); it != j_.end(); ++it)
-      if (!known_.count(it.key()) && it.key() != "comment") unknown += (unknown.empty() ? "\"" : ", \"") + it.key() + "\"";
-    fail(source_, key.empty() ? path_ : key_path(key),
-         what + (unknown.empty() || known_.empty() ? "" : " (this object has the unknown key " + unknown + ": misspelt?)"));
-  }
-
-  const std::string& source() const { return source_; }
-
- private:
-  const json& j_;
-  std::string source_;
-  std::string path_;
-  std::set<std::string> used_;
-  std::set<std::string> known_;
-};
-
-constexpr double kHuge = 1e6;  // metres, m/s, ...: larger values are taken as mistakes
 
 FluidSpec read_fluid(ObjectReader& r) {
   r.allow({"name", "rest_density", "speed_of_sound", "viscosity", "artificial_viscosity", "near_stiffness",
@@ -181,17 +53,6 @@ int read_fluid_ref(ObjectReader& r, const std::vector<FluidSpec>& fluids) {
     fail(r.source(), r.key_path("fluid"), "no fluid named \"" + v.get<std::string>() + "\"");
   }
   fail(r.source(), r.key_path("fluid"), "expected a fluid name or index");
-}
-
-Vec3d normalised(const Vec3d& v, const std::string& source, const std::string& key) {
-  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(n > 0.0)) fail(source, key, "must not be the zero vector");
-  return {v[0] / n, v[1] / n, v[2] / n};
-}
-
-void check_box(const Vec3d& lo, const Vec3d& hi, const std::string& source, const std::string& key) {
-  for (int i = 0; i < 3; ++i)
-    if (!(hi[i] > lo[i])) fail(source, key, "max must be larger than min on every axis");
 }
 
 EmitterSpec read_emitter(ObjectReader& r, const std::vector<FluidSpec>& fluids) {
@@ -446,27 +307,6 @@ void read_solver(ObjectReader& r, Scene& s) {
   }
 }
 
-// A mesh's "file" (an OBJ, resolved against the scene file's folder), "scale" (a number or one per axis) and
-// "translate", for the scene's meshes and for mesh bodies.
-void read_mesh_placement(ObjectReader& mr, const std::string& source, std::string& file, Vec3d& scale, Vec3d& translate) {
-  if (!mr.has("file")) mr.missing("file", "is required: the path of an OBJ file, relative to the scene file");
-  const fs::path p = mr.string("file", "");
-  std::string extension = p.extension().string();
-  for (char& ch : extension) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (p.empty() || extension != ".obj")
-    fail(source, mr.key_path("file"), "expected the path of a Wavefront OBJ file (.obj), not \"" + p.string() + "\"");
-  file = (p.is_absolute() ? p : fs::path(source).parent_path() / p).string();
-  if (mr.has("scale") && mr.raw("scale").is_number()) {
-    const double k = mr.number("scale", 1.0, 0.0, 1e6, true);
-    scale = {k, k, k};
-  } else {
-    scale = mr.vec3("scale", scale);
-    for (const double k : scale)
-      if (!(k > 0.0)) fail(source, mr.key_path("scale"), "expected a positive number or three positive numbers");
-  }
-  translate = mr.vec3("translate", translate);
-}
-
 // The scene in root (the file with the --set overrides applied); SceneError names source and the key.
 Scene read_scene(const json& root, const std::string& source) {
   Scene s;
@@ -515,105 +355,9 @@ Scene read_scene(const json& root, const std::string& source) {
     }
   }
 
-  if (r.has("meshes")) {
-    const json& ms = r.raw("meshes");
-    if (!ms.is_array()) fail(source, "meshes", "expected a list of mesh objects ({\"file\": \"model.obj\", ...})");
-    for (std::size_t i = 0; i < ms.size(); ++i) {
-      ObjectReader mr(ms[i], source, "meshes." + std::to_string(i));
-      mr.allow({"file", "inside", "scale", "translate", "slip"});
-      MeshSpec m;
-      read_mesh_placement(mr, source, m.file, m.scale, m.translate);
-      m.inside = mr.boolean("inside", false);
-      m.slip = mr.number("slip", 1.0, 0.0, 1.0);
-      mr.finish();
-      s.meshes.push_back(m);
-    }
-  }
-
-  if (r.has("bodies")) {
-    const json& bs = r.raw("bodies");
-    if (!bs.is_array()) fail(source, "bodies", "expected a list of body objects ({\"type\": \"box\", ...})");
-    for (std::size_t i = 0; i < bs.size(); ++i) {
-      ObjectReader br(bs[i], source, "bodies." + std::to_string(i));
-      BodySpec b;
-      const int shape = br.choice<int>("type", 0, {{"box", 0}, {"sphere", 1}, {"mesh", 2}});
-      if (!br.has("type")) br.missing("type", "is required (\"box\", \"sphere\" or \"mesh\")");
-      b.sphere = shape == 1;
-      b.mesh = shape == 2;
-      if (b.mesh) {
-        br.allow({"type", "file", "scale", "translate", "density", "mass", "motion", "slip", "oscillation"});
-        read_mesh_placement(br, source, b.file, b.scale, b.translate);
-      } else if (b.sphere) {
-        br.allow({"type", "center", "radius", "density", "mass", "motion", "slip", "oscillation"});
-        b.center = br.required_vec3("center");
-        if (!br.has("radius")) br.missing("radius", "is required");
-        b.radius = br.number("radius", 0.0, 0.0, kHuge, true);
-      } else {
-        br.allow({"type", "min", "max", "density", "mass", "motion", "slip", "oscillation"});
-        b.min = br.required_vec3("min");
-        b.max = br.required_vec3("max");
-        check_box(b.min, b.max, source, br.key_path("max"));
-      }
-      if (br.has("density") == br.has("mass")) br.missing("density", "give exactly one of density [kg/m^3] and mass [kg]");
-      b.density = br.number("density", 0.0, 0.0, 1e6, true);
-      b.mass = br.number("mass", 0.0, 0.0, 1e9, true);
-      const int motion = br.choice<int>("motion", 0, {{"free", 0}, {"fixed", 1}, {"prescribed", 2}});
-      b.free = motion == 0;
-      b.prescribed = motion == 2;
-      if (b.prescribed != br.has("oscillation"))
-        br.missing("oscillation", "goes with \"motion\": \"prescribed\" and only with it: {\"amplitude\": [x, y, z] (m), "
-                                  "\"period\": s} for a piston, {\"angle\": degrees, \"axis\": [x, y, z], \"pivot\": [x, y, z] (m), "
-                                  "\"period\": s} for a flap, or both");
-      if (b.prescribed) {
-        ObjectReader orr(br.raw("oscillation"), source, br.key_path("oscillation"));
-        orr.allow({"amplitude", "period", "angle", "axis", "pivot"});
-        if (!orr.has("amplitude") && !orr.has("angle"))
-          orr.missing("amplitude", "give a translation amplitude [x, y, z] (m), a rotation angle (degrees) with its axis and pivot, or both");
-        b.amplitude = orr.vec3("amplitude", b.amplitude);
-        if (!orr.has("period")) orr.missing("period", "is required (seconds)");
-        b.period = orr.number("period", 1.0, 0.0, 1e6, true);
-        if (orr.has("angle")) {
-          b.angle = orr.number("angle", 0.0, -180.0, 180.0) * 3.14159265358979323846 / 180.0;
-          if (!orr.has("axis") || !orr.has("pivot"))
-            orr.missing(orr.has("axis") ? "pivot" : "axis", "a rotation needs its axis (a direction) and pivot (a point the axis runs through, m)");
-          const Vec3d axis = orr.required_vec3("axis");
-          const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-          if (!(len > 0.0)) fail(source, orr.key_path("axis"), "expected a non-zero direction");
-          b.axis = {axis[0] / len, axis[1] / len, axis[2] / len};
-          b.pivot = orr.required_vec3("pivot");
-        } else if (orr.has("axis") || orr.has("pivot")) {
-          orr.missing("angle", "axis and pivot describe a rotation: give its angle (degrees) too");
-        }
-        orr.finish();
-      }
-      b.slip = br.number("slip", 1.0, 0.0, 1.0);
-      br.finish();
-      s.bodies.push_back(b);
-    }
-  }
-
-  if (r.has("probes")) {  // water-height gauges: columns depth_<name> of metrics.csv
-    const json& ps = r.raw("probes");
-    if (!ps.is_array() || ps.size() > 64)
-      fail(source, "probes", "expected a list of at most 64 probes ({\"name\": \"H1\", \"position\": [x, y, z]})");
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      ObjectReader pr(ps[i], source, "probes." + std::to_string(i));
-      pr.allow({"name", "position"});
-      ProbeSpec p;
-      if (!pr.has("name")) pr.missing("name", "is required: letters, digits and '_' (the metrics.csv column is depth_<name>)");
-      p.name = pr.string("name", "");
-      const bool word = !p.name.empty() && p.name.size() <= 32 &&
-                        std::all_of(p.name.begin(), p.name.end(), [](char ch) {
-                          return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
-                        });
-      if (!word) fail(source, pr.key_path("name"), "\"" + p.name + "\" is not a name: allowed 1 to 32 letters, digits and '_'");
-      for (const ProbeSpec& q : s.probes)
-        if (q.name == p.name) fail(source, pr.key_path("name"), "\"" + p.name + "\" names two probes");
-      p.position = pr.required_vec3("position");
-      pr.finish();
-      s.probes.push_back(p);
-    }
-  }
+  read_meshes(r, s);
+  read_bodies(r, s);
+  read_probes(r, s);
 
   if (!r.has("resolution")) r.missing("resolution", "is required: {\"particles_across\": N} or {\"spacing\": metres}");
   {
