@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Validation runs with an error figure each: the dam break against Martin & Moyce (1952), the water jet
-against the thesis's AXIM range, the hydrostatic tank, and the dam break with an obstacle against MARIN's
-gauges (SPHERIC benchmark 2, spheric2.py). Runs build/sph_run, writes OUT/validation.json,
+against the thesis's AXIM range, the hydrostatic tank, the dam break with an obstacle against MARIN's
+gauges (SPHERIC benchmark 2, spheric2.py), and the piston wave maker against Biesel's transfer function
+(wave_maker.py). Runs build/sph_run, writes OUT/validation.json,
 OUT/validation.md and OUT/dam_break_vs_experiment.png.
 
 usage: benchmarks/validate.py [--backend host] [--quick] [--out out/validation]
@@ -22,6 +23,7 @@ import numpy as np
 from experiments import A, AXIM_RANGE, G, dam_break_curves, dam_break_errors, jet_range, read_reference
 from ply_frames import read_ply
 from spheric2 import compare as spheric2_compare
+from wave_maker import compare as wave_maker_compare
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -214,6 +216,22 @@ def spheric2(args, out):
     return r
 
 
+def wave_maker(args, out):
+    """The piston wave maker (scenes/wave_maker.json) in a tank stretched to 3 m, so that 3.5 periods pass the
+    gauge at 1 m before a reflection can return, for 5 s, against Biesel's transfer function (wave_maker.py);
+    --quick at twice the spacing."""
+    tank = 3.0
+    sets = [f"boundaries.0.max=[{tank},0.4,0.1]", f"emitters.0.max=[{tank},0.15,0.1]",
+            'probes=[{"name": "x050", "position": [0.5, 0, 0.05]}, {"name": "x100", "position": [1.0, 0, 0.05]}]']
+    if args.quick:
+        sets.append("resolution.spacing=0.02")
+    m, summary, wall = run(args, "piston wave maker, 3 m tank", "wave_maker.json", 5.0, os.path.join(out, "wave_maker"),
+                           sets, metrics_every=0.005)
+    r = wave_maker_compare(m, out, pyplot(), save_chart, tank=tank)
+    r.update({"particles": int(summary["particles"]), "wall_seconds": wall})
+    return r
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--backend", default="host")
@@ -224,7 +242,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     results = {"backend": args.backend, "quick": args.quick,
                "dam_break": dam_break(args, args.out), "water_jet": water_jet(args, args.out),
-               "spheric2": spheric2(args, args.out)}
+               "spheric2": spheric2(args, args.out), "wave_maker": wave_maker(args, args.out)}
     if not args.quick:
         results["hydrostatic_tank"] = hydrostatic(args, args.out)
     with open(os.path.join(args.out, "validation.json"), "w") as f:
@@ -258,6 +276,13 @@ def main():
     if sp.get("water_reaches_obstacle_s") is not None:
         lines.append(f"| SPHERIC 2 | water reaches the obstacle (2 cm deep 2.5 cm before its face) | "
                      f"{sp['water_reaches_obstacle_s']:.3f} s | |")
+    wm = results["wave_maker"]
+    for g, r in wm["gauges"].items():
+        if "height_m" in r:
+            lines.append(f"| piston wave maker ({wm['particles']} particles; kh = {wm['kh']:.2f}) | wave height at x = {r['x_m']} m, "
+                         f"{r['window_s'][0]:.2f} to {r['window_s'][1]:.2f} s (sinusoid fit; crest to trough), against Biesel's "
+                         f"{100 * wm['biesel_H_m']:.2f} cm | {100 * r['height_m']:.2f} cm ({r['height_over_biesel']:.2f} of it); "
+                         f"{100 * r['crest_to_trough_m']:.2f} cm | |")
     if "hydrostatic_tank" in results:
         for walls, hs in results["hydrostatic_tank"].items():
             lines += [f"| hydrostatic tank, {walls} walls | interior density error | {100 * hs['interior_density_error_mean']:.2f}% | <= 1% |",
@@ -269,7 +294,7 @@ def main():
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
     print(f"\nwritten: {args.out}/validation.json, validation.md, dam_break_vs_experiment.png, water_jet.png, "
-          "spheric2_gauges.png, spheric2_gauges.csv, "
+          "spheric2_gauges.png, spheric2_gauges.csv, wave_maker_gauges.png, "
           "water_jet_trajectory.csv")
 
 
