@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # One command for every measured figure: speed (sph_bench), the integrator tables (sph_oscillators),
 # validation against experiments (validate.py), stability, clustering and accuracy-against-cost studies and
-# their charts (studies.py). About 15 minutes on a 2-core machine; --quick runs everything small in 65 to 80 s
-# on 2 cores shared with other work (26 s of CPU time). Results in out/results/ (or the folder given with --out).
+# their charts (studies.py). About 35 to 40 minutes on a 2-core machine (the sum of its parts' times: the
+# validation's SPHERIC 2 and wave-maker runs take about 9 and 12 minutes); --quick runs everything small in
+# about 2 minutes (validate.py --quick alone took 64 s). Results in out/results/ (or the folder given with --out).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 quick=""
