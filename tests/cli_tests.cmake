@@ -445,3 +445,16 @@ sph_cli_test(mesh_body_missing
   --exit 1 --stderr "bodies.0 (mesh)" --stderr "nope.obj"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json "--set=bodies.0={\"type\": \"mesh\", \"file\": \"nope.obj\", \"density\": 300}"
      --steps 1 --out ${SPH_CLI_OUT}/mesh_body_missing)
+sph_cli_test(bodies_too_light
+  --exit 1 --stderr "bodies.0 (box)" --stderr "below 1% of the fluid's" --stderr "at least 10 kg/m^3"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json
+     "--set=bodies=[{\"type\": \"box\", \"min\": [0.16, 0.16, 0.06], \"max\": [0.24, 0.22, 0.14], \"mass\": 1e-9}]"
+     --steps 1 --out ${SPH_CLI_OUT}/bodies_light)
+sph_cli_test(bodies_columns
+  --exit 0 --csv-column ${SPH_CLI_OUT}/bodies_columns/metrics.csv body0_y --csv-column ${SPH_CLI_OUT}/bodies_columns/metrics.csv body0_qw
+  --csv-column ${SPH_CLI_OUT}/bodies_columns/metrics.csv body0_fy --csv-complete ${SPH_CLI_OUT}/bodies_columns/metrics.csv
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/floating_box.json --set resolution.spacing=0.0125 --steps 5 --out ${SPH_CLI_OUT}/bodies_columns)
+sph_cli_test(probes_outside_domain
+  --exit 0 --stderr "probes.0 (\"H1\")" --stderr "outside the domain" --stderr "will read 0"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break_obstacle.json --set resolution.spacing=0.05 "--set=probes.0.position=[5,0,0.5]"
+     --steps 2 --out ${SPH_CLI_OUT}/probes_outside)

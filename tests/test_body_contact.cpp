@@ -105,7 +105,7 @@ TEST_CASE("body contact: two boxes colliding without gravity conserve momentum a
   bool touched = false;
   for (int k = 0; k < 400; ++k) {  // 0.2 s: they meet after about 0.05 s
     s.step(5e-4);
-    touched = touched || s.bodies[0].contact;
+    touched = touched || s.bodies[0].body_contact;
   }
   const std::array<double, 3> after = momentum();
   REQUIRE(touched);

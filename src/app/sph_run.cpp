@@ -75,10 +75,15 @@ const char* const kMetricsHeader =
     "top_y,height_at_x0,particles,outside_domain,wall_ms,solver_iterations,solver_density_error,divergence_iterations,"
     "divergence_error,deepest_in_solid,particles_in_solids";
 
-// The header with a depth_<name> column per probe of the scene.
+// The header with a depth_<name> column per probe of the scene, then per rigid body k its centre, velocity,
+// orientation quaternion and the fluid's force on it: body<k>_x, _y, _z [m], _vx, _vy, _vz [m/s], _qw, _qx,
+// _qy, _qz, _fx, _fy, _fz [N].
 std::string metrics_header(const Scene& scene) {
   std::string header = kMetricsHeader;
   for (const ProbeSpec& p : scene.probes) header += ",depth_" + p.name;
+  for (std::size_t k = 0; k < scene.bodies.size(); ++k)
+    for (const char* q : {"x", "y", "z", "vx", "vy", "vz", "qw", "qx", "qy", "qz", "fx", "fy", "fz"})
+      header += ",body" + std::to_string(k) + "_" + q;
   return header;
 }
 
@@ -108,6 +113,12 @@ void write_metrics_row(MetricsFile& csv, Simulation& sim, const std::vector<Prob
   row << ',' << st.density_iterations << ',' << st.density_error << ',' << st.divergence_iterations << ','
       << st.divergence_error << ',' << pen.deepest << ',' << pen.count;
   for (const ProbeSpec& p : probes) row << ',' << probe_depth(c, sim.particles(), p.position);
+  for (std::size_t k = 0; k < sim.scene().bodies.size(); ++k) {  // the scene's bodies (not the demo's drops)
+    const RigidBody& b = sim.backend().bodies().at(k);
+    for (const double v : {b.centre[0], b.centre[1], b.centre[2], b.velocity[0], b.velocity[1], b.velocity[2], b.orientation[0],
+                           b.orientation[1], b.orientation[2], b.orientation[3], b.force[0], b.force[1], b.force[2]})
+      row << ',' << v;
+  }
   csv.write_row(row.str());
 }
 
@@ -166,6 +177,20 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << ", output: " << o.out << "\n";
   for (const std::string& line : st.report) std::cout << "setup: " << line << "\n";
   std::cout.flush();
+  // A probe outside the domain the fluid can fill reads 0 for ever: say so (probes only read, so it runs).
+  const GridGeometry& g = st.constants.grid;
+  const double hi[3] = {g.origin.x + g.cell_size * g.nx, g.origin.y + g.cell_size * g.ny, g.origin.z + g.cell_size * g.nz};
+  const double lo[3] = {g.origin.x, g.origin.y, g.origin.z};
+  for (std::size_t i = 0; i < scene.probes.size(); ++i) {
+    const ProbeSpec& p = scene.probes[i];
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) inside = inside && p.position[std::size_t(a)] >= lo[a] && p.position[std::size_t(a)] <= hi[a];
+    if (!inside)
+      std::cerr << "warning: " << scene.source << ": probes." << i << " (\"" << p.name << "\") at (" << p.position[0] << ", "
+                << p.position[1] << ", " << p.position[2] << ") m lies outside the domain (" << lo[0] << ".." << hi[0] << ", "
+                << lo[1] << ".." << hi[1] << ", " << lo[2] << ".." << hi[2] << " m): its depth_" << p.name
+                << " will read 0\n";
+  }
 }
 
 // The iterative solvers' lines of the summary: iterations per step (mean and maximum), the largest error a
@@ -178,7 +203,8 @@ void print_solver_summary(const Simulation& sim) {
   for (const RigidBody& b : sim.backend().bodies())
     std::cout << "body: " << b.label << ": centre (" << b.centre[0] << ", " << b.centre[1] << ", " << b.centre[2]
               << ") m, velocity (" << b.velocity[0] << ", " << b.velocity[1] << ", " << b.velocity[2] << ") m/s, fluid force ("
-              << b.force[0] << ", " << b.force[1] << ", " << b.force[2] << ") N" << (b.contact ? ", touching a wall" : "") << "\n";
+              << b.force[0] << ", " << b.force[1] << ", " << b.force[2] << ") N" << (b.contact ? ", touching a wall" : "")
+              << (b.body_contact ? ", touching another body" : "") << "\n";
   if (scene.solver == Solver::Wcsph || t.steps == 0) return;
   const double steps = double(t.steps);
   const bool dfsph = scene.solver == Solver::Dfsph;
@@ -413,7 +439,8 @@ int main(int argc, char** argv) {
       "density_error_max, v_max, front_x, top_y, height_at_x0, particles, outside_domain, wall_ms, and the iterative\n"
       "solvers' solver_iterations, solver_density_error, divergence_iterations, divergence_error, deepest_in_solid\n"
       "(m: the deepest any fluid particle is inside a wall, obstacle or body), particles_in_solids (deeper than\n"
-      "half a spacing), then depth_<name> for each of the scene's \"probes\" (water-height gauges); flushed at\n"
+      "half a spacing), then depth_<name> for each of the scene's \"probes\" (water-height gauges) and, for each\n"
+      "rigid body k, body<k>_x, _y, _z, _vx, _vy, _vz, _qw, _qx, _qy, _qz (orientation), _fx, _fy, _fz; flushed at\n"
       "least once per second) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends\n"
       "with a summary: particles, steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by\n"
       "phase), the solver and, for DFSPH and PBF, iterations per step and steps that reached the iteration cap.\n"

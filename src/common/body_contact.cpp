@@ -147,7 +147,7 @@ void pair_contact(RigidBody& a, RigidBody& b) {
   const double share = sa.inv_mass / (sa.inv_mass + sb.inv_mass);
   a.centre = b3(sa.centre + share * depth * n);
   b.centre = b3(sb.centre - (1.0 - share) * depth * n);
-  a.contact = b.contact = true;
+  a.body_contact = b.body_contact = true;
   if (a.motion == BodyMotion::Free) a.velocity = b3(va), a.omega = b3(wa);
   if (b.motion == BodyMotion::Free) b.velocity = b3(vb), b.omega = b3(wb);
 }
@@ -155,6 +155,7 @@ void pair_contact(RigidBody& a, RigidBody& b) {
 }  // namespace
 
 void contact_between_bodies(std::vector<RigidBody>& bodies) {
+  for (RigidBody& b : bodies) b.body_contact = false;
   for (std::size_t i = 0; i < bodies.size(); ++i)
     for (std::size_t k = i + 1; k < bodies.size(); ++k) {
       const double reach = bodies[i].radius + bodies[k].radius + std::max(bodies[i].spacing, bodies[k].spacing);

@@ -71,7 +71,11 @@ BodyView RigidBody::view(const BoundaryView& local_view, float h) const {
 double depth_in_body(const RigidBody& b, const BodyVector& p) {
   const Eigen::Vector3d local = quaternion(b.orientation).conjugate() * (e3(p) - e3(b.centre));
   if (b.sphere) return b.half_extent[0] - local.norm();
-  if (b.mesh) return -mesh_signed_distance(b.surface, {local.x(), local.y(), local.z()});
+  if (b.mesh) {  // outside its bounding box: outside it by at least the distance to the box (no triangle asked)
+    const Eigen::Vector3d gap = (local.cwiseAbs() - e3(b.half_extent)).cwiseMax(0.0);
+    if (gap.squaredNorm() > 0.0) return -gap.norm();
+    return -mesh_signed_distance(b.surface, {local.x(), local.y(), local.z()});
+  }
   return (e3(b.half_extent) - local.cwiseAbs()).minCoeff();
 }
 

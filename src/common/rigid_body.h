@@ -47,7 +47,8 @@ struct RigidBody {
   std::array<double, 4> orientation{1.0, 0.0, 0.0, 0.0};  // unit quaternion (w, x, y, z), body to world
   // The fluid's last force and torque on it [N], [N m], and whether contact with the walls acted.
   BodyVector force{}, torque{};
-  bool contact = false;
+  bool contact = false;       // a wall's contact acted this step
+  bool body_contact = false;  // another body's contact acted this step (body_contact.h)
 
   // The view the fluid's loops read, with `local` as given (the back end's copy of this body's particles).
   BodyView view(const BoundaryView& local_view, float h) const;

@@ -111,8 +111,10 @@ std::vector<RigidBody> place_rigid_bodies(const Scene& scene, const SimConstants
     Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // its principal axes in the world (columns)
     const double pi = 3.14159265358979323846;
     const double ex = hi[0] - lo[0], ey = hi[1] - lo[1], ez = hi[2] - lo[2];
+    double volume = ex * ey * ez;  // [m^3]
     if (spec.sphere) {
-      b.mass = spec.mass > 0.0 ? spec.mass : spec.density * 4.0 / 3.0 * pi * spec.radius * spec.radius * spec.radius;
+      volume = 4.0 / 3.0 * pi * spec.radius * spec.radius * spec.radius;
+      b.mass = spec.mass > 0.0 ? spec.mass : spec.density * volume;
       const double moment = 0.4 * b.mass * spec.radius * spec.radius;
       b.inertia = {moment, moment, moment};
       b.half_extent = {spec.radius, spec.radius, spec.radius};
@@ -120,6 +122,7 @@ std::vector<RigidBody> place_rigid_bodies(const Scene& scene, const SimConstants
     } else if (spec.mesh) {  // mass properties from the surface; its frame along the principal axes
       const MeshMassProperties props = mesh_mass_properties(solid.mesh);
       if (!(props.volume > 0.0)) refuse(spec.file + ": it encloses no volume");
+      volume = props.volume;
       b.mass = spec.mass > 0.0 ? spec.mass : spec.density * props.volume;
       Eigen::Matrix3d inertia;
       for (int r = 0; r < 3; ++r)
@@ -159,6 +162,17 @@ std::vector<RigidBody> place_rigid_bodies(const Scene& scene, const SimConstants
         b.hull.push_back({(k & 1 ? 0.5 : -0.5) * ex, (k & 2 ? 0.5 : -0.5) * ey, (k & 4 ? 0.5 : -0.5) * ez});
     }
     if (!(b.mass > 0.0)) refuse("its mass is not positive");
+    // The coupling is explicit: a body far lighter than the fluid it displaces is accelerated by the fluid's
+    // added mass faster than a step can follow, and the run blows up (a 1e-9 kg box reached 1e9 m/s).
+    double lightest = 1e300;
+    for (int32_t f = 0; f < c.num_fluids; ++f) lightest = std::min(lightest, double(c.fluids[f].rest_density));
+    if (b.mass / volume < 0.01 * lightest) {
+      std::ostringstream os;
+      os << "its density, " << b.mass / volume << " kg/m^3 (mass " << b.mass << " kg over " << volume
+         << " m^3), is below 1% of the fluid's (" << lightest << " kg/m^3): the explicit coupling cannot move a body "
+         << "that light (it blows up); allowed: at least " << 0.01 * lightest << " kg/m^3";
+      refuse(os.str());
+    }
     b.start = b.centre;
     if (spec.prescribed) {  // its whole stroke must stay inside the containers: 41 poses over a period
       for (int k = 0; k <= 40; ++k) {
