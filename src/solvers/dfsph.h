@@ -184,9 +184,7 @@ struct BodyReactionFn {
       dfsph_body_reaction(*c, g, p, p.near_pressure[i] / (dt * p.density[i]), i, body, f, t);
       force += f, torque += t;
     }
-    const Vec3 v = component < 3 ? force : torque;
-    const int32_t k = component % 3;
-    return double(k == 0 ? v.x : k == 1 ? v.y : v.z);
+    return wrench_component(force, torque, component);
   }
 };
 

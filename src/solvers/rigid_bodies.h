@@ -29,6 +29,14 @@ struct BodyForcesFn {
   }
 };
 
+// Component `component` of a force and torque: 0-2 force x, y, z [N]; 3-5 torque x, y, z [N m] (the six sums
+// update_bodies_with asks for).
+SPH_HD inline double wrench_component(Vec3 force, Vec3 torque, int32_t component) {
+  const Vec3 v = component < 3 ? force : torque;
+  const int32_t k = component % 3;
+  return double(k == 0 ? v.x : k == 1 ? v.y : v.z);
+}
+
 // Component `component` (0-2: force x, y, z [N]; 3-5: torque [N m]) of particle i's reaction on body `body`
 // (forces.h, body_reaction), for the back end's deterministic sum (Exec::sum).
 template <class C, class Model>
@@ -41,9 +49,7 @@ struct BodyReactionFn {
   SPH_KERNEL_FN double operator()(int32_t i) const {
     Vec3 force, torque;
     body_reaction<Model>(*c, g, p, i, body, force, torque);
-    const Vec3 v = component < 3 ? force : torque;
-    const int32_t k = component % 3;
-    return double(k == 0 ? v.x : k == 1 ? v.y : v.z);
+    return wrench_component(force, torque, component);
   }
 };
 
