@@ -227,7 +227,11 @@ def wave_maker(args, out):
         sets.append("resolution.spacing=0.02")
     m, summary, wall = run(args, "piston wave maker, 3 m tank", "wave_maker.json", 5.0, os.path.join(out, "wave_maker"),
                            sets, metrics_every=0.005)
-    r = wave_maker_compare(m, out, pyplot(), save_chart, tank=tank)
+    with open(os.path.join(ROOT, "scenes", "wave_maker.json")) as f:
+        fluid = json.load(f)["fluids"][0]
+    h = float(re.search(r"h: ([0-9.eE+-]+) m", summary["spacing"]).group(1))
+    r = wave_maker_compare(m, out, pyplot(), save_chart, tank=tank,
+                           viscosity={"alpha": fluid["artificial_viscosity"], "h": h, "c0": fluid["speed_of_sound"]})
     r.update({"particles": int(summary["particles"]), "wall_seconds": wall})
     return r
 
@@ -283,6 +287,12 @@ def main():
                          f"{r['window_s'][0]:.2f} to {r['window_s'][1]:.2f} s (sinusoid fit; crest to trough), against Biesel's "
                          f"{100 * wm['biesel_H_m']:.2f} cm | {100 * r['height_m']:.2f} cm ({r['height_over_biesel']:.2f} of it); "
                          f"{100 * r['crest_to_trough_m']:.2f} cm | |")
+    if "decay_per_m" in wm:
+        lines.append(f"| piston wave maker | height decay along the tank, measured; predicted from the artificial viscosity "
+                     f"(nu = alpha h c0 / 10 = {wm.get('artificial_nu_m2_s', float('nan')):.4f} m^2/s) | "
+                     f"{wm['decay_per_m']:.2f} /m; {wm.get('predicted_decay_per_m', float('nan')):.2f} /m | |")
+        lines.append(f"| piston wave maker | height at the paddle, extrapolated back from the two gauges, against Biesel | "
+                     f"{100 * wm['height_at_paddle_m']:.2f} cm ({wm['height_at_paddle_over_biesel']:.2f}) | |")
     if "hydrostatic_tank" in results:
         for walls, hs in results["hydrostatic_tank"].items():
             lines += [f"| hydrostatic tank, {walls} walls | interior density error | {100 * hs['interior_density_error_mean']:.2f}% | <= 1% |",

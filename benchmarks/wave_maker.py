@@ -33,10 +33,12 @@ def group_velocity(k, depth, period):
     return 0.5 * c * (1.0 + 2 * k * depth / math.sinh(2 * k * depth))
 
 
-def compare(m, out, plt=None, save_chart=None, depth=0.15, stroke=0.04, period=0.8, paddle_x=0.05, tank=1.2):
+def compare(m, out, plt=None, save_chart=None, depth=0.15, stroke=0.04, period=0.8, paddle_x=0.05, tank=1.2,
+            viscosity=None):
     """m: metrics.csv columns depth_xNNN (a gauge NNN cm from the tank's end); tank: its length [m]. The
     window at each gauge: from a period after the front (at the group velocity) until the first reflection
-    from the far wall can return (at the phase speed, the fastest linear waves)."""
+    from the far wall can return (at the phase speed, the fastest linear waves). viscosity: {"alpha", "h",
+    "c0"} of the run, for the decay the artificial viscosity predicts."""
     k = wavenumber(period, depth)
     ratio = biesel_piston(k * depth)
     cg = group_velocity(k, depth, period)
@@ -62,6 +64,21 @@ def compare(m, out, plt=None, save_chart=None, depth=0.15, stroke=0.04, period=0
             r["mean_depth_m"] = float(coef[2])
             r["residual_rms_m"] = float(np.sqrt(np.mean((a @ coef - d) ** 2)))
         result["gauges"][name[len("depth_"):]] = r
+    # Damping along the tank: the measured decay between the first two gauges, the height it implies at the
+    # paddle, and the decay the artificial viscosity alone predicts (its kinematic viscosity in 3-D,
+    # nu = alpha h c0 / 10 [Monaghan 2005], damps a linear wave's amplitude at 2 nu k^2 per second, so per
+    # metre of travel at the group velocity 2 nu k^2 / c_g).
+    fitted = [g for g in result["gauges"].values() if "height_m" in g]
+    if len(fitted) >= 2:
+        a, b = fitted[0], fitted[1]
+        rate = math.log(a["height_m"] / b["height_m"]) / (b["x_m"] - a["x_m"])
+        result["decay_per_m"] = rate
+        result["height_at_paddle_m"] = a["height_m"] * math.exp(rate * (a["x_m"] - paddle_x))
+        result["height_at_paddle_over_biesel"] = result["height_at_paddle_m"] / result["biesel_H_m"]
+    if viscosity is not None:
+        nu = viscosity["alpha"] * viscosity["h"] * viscosity["c0"] / 10.0
+        result["artificial_nu_m2_s"] = nu
+        result["predicted_decay_per_m"] = 2.0 * nu * k * k / cg
     if plt:
         fig, ax = plt.subplots(figsize=(8, 3.6))
         for name in sorted(c for c in m if c.startswith("depth_x")):
