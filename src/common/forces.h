@@ -91,15 +91,49 @@ SPH_HD_ALWAYS_INLINE PairSide particle_side(const SimConstants& c, const Particl
                   p.near_pressure_rho2[i]};
 }
 
+// Monaghan's artificial viscosity, thesis eq. 2.20-2.22 (beta = 0), approaching pairs only: -m_b Pi_ab, to be
+// multiplied by grad W_ab's scalar (the caller's grad) and x_ab, as the pressure term is.
+// Pi_ab = -alpha cbar mu_ab / rho_ab, mu_ab = h v_ab.x_ab / (r^2 + eps^2), rho_ab = (rho_a + rho_b) / 2: both
+// quotients in one division. Receding pairs (v_ab.x_ab >= 0) get mu_ab = 0, without a branch: whether a pair
+// approaches is a coin toss in a splashing fluid, which a CPU mispredicts. min(v_ab.x_ab, 0), exactly, as
+// (x - |x|) / 2: fminf is a library call on x86 (1.4% of a dam-break step), and GCC turns a
+// compare-and-select into a branch.
+SPH_HD_ALWAYS_INLINE float artificial_viscosity_pair(const SimConstants& c, const PairSide& a, const PairSide& b, Vec3 xab,
+                                                     float r2, Vec3 vab) {
+  const KernelCoeffs& k = c.kernel;
+  const float approach = dot(vab, xab);
+  const float vx = 0.5f * (approach - fabsf(approach));
+  const float alpha = 0.5f * (a.fluid->artificial_alpha + b.fluid->artificial_alpha);
+  const float cbar = 0.5f * (a.fluid->speed_of_sound + b.fluid->speed_of_sound);
+  const float pi_ab = -alpha * cbar * k.h * vx / ((r2 + kPairEps2 * k.h2) * (0.5f * (a.rho + b.rho)));
+  return -b.mass * pi_ab;
+}
+
+// The laminar viscosity of the fluids' mu on pair a-b (the scene's sph.viscosity): its acceleration of a
+// [m/s^2]. r = |x_ab|, grad: grad W_ab's scalar (spiky dW/dr / r).
+SPH_HD_ALWAYS_INLINE Vec3 laminar_viscosity_pair(const SimConstants& c, const PairSide& a, const PairSide& b, float r,
+                                                 float r2, float grad, Vec3 vab) {
+  const KernelCoeffs& k = c.kernel;
+  const float mb = b.mass;
+  switch (c.viscosity) {
+    case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
+      return -(a.fluid->viscosity * mb * viscosity_laplacian(k, r) * a.inv_rho * b.inv_rho) * vab;
+    case ViscosityModel::Morris:  // Morris 1997: sum m_b (mu_a + mu_b)/(rho_a rho_b) (x_ab.gradW)/(r^2+eps^2) v_ab
+      return (mb * (a.fluid->viscosity + b.fluid->viscosity) * grad * r2 * a.inv_rho * b.inv_rho /
+              (r2 + kPairEps2 * k.h2)) * vab;
+    case ViscosityModel::Artificial:
+    case ViscosityModel::None:
+      break;
+  }
+  return Vec3{0.0f, 0.0f, 0.0f};
+}
+
 template <class Model>
 SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const PairSide& a, const PairSide& b, Vec3 xab,
                                                   float r2, Vec3 vab, Vec3& acc) {
   const KernelCoeffs& k = c.kernel;
-  const float eps2 = kPairEps2 * k.h2;
   const float r = sqrtf(r2);
   const float inv_r = 1.0f / r;  // the gradients are dW/dr x_ab / r (kernels.h)
-  const FluidConstants& fa = *a.fluid;
-  const FluidConstants& fb = *b.fluid;
   const float mb = b.mass;
   const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
 
@@ -110,30 +144,8 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
     s += pressure_pair<Model::form>(mb, a.near_pressure, a.near_pressure_rho2, a.inv_rho, b.near_pressure,
                                     b.near_pressure_rho2, b.inv_rho) * near_dwdr(k, r) * inv_r;
 
-  switch (c.viscosity) {  // the laminar viscosity of the fluids' mu
-    case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
-      acc -= (fa.viscosity * mb * viscosity_laplacian(k, r) * a.inv_rho * b.inv_rho) * vab;
-      break;
-    case ViscosityModel::Morris:  // Morris 1997: sum m_b (mu_a + mu_b)/(rho_a rho_b) (x_ab.gradW)/(r^2+eps^2) v_ab
-      acc += (mb * (fa.viscosity + fb.viscosity) * grad * r2 * a.inv_rho * b.inv_rho / (r2 + eps2)) * vab;
-      break;
-    case ViscosityModel::Artificial:
-    case ViscosityModel::None:
-      break;
-  }
-  if (c.artificial_enabled) {  // thesis eq. 2.20-2.22 (beta = 0), approaching pairs only
-    // Pi_ab = -alpha cbar mu_ab / rho_ab, mu_ab = h v_ab.x_ab / (r^2 + eps^2), rho_ab = (rho_a + rho_b) / 2:
-    // both quotients in one division. Receding pairs (v_ab.x_ab >= 0) get mu_ab = 0, without a branch:
-    // whether a pair approaches is a coin toss in a splashing fluid, which a CPU mispredicts.
-    // min(v_ab.x_ab, 0), exactly, as (x - |x|) / 2: fminf is a library call on x86 (1.4% of a dam-break
-    // step), and GCC turns a compare-and-select into a branch.
-    const float approach = dot(vab, xab);
-    const float vx = 0.5f * (approach - fabsf(approach));
-    const float alpha = 0.5f * (fa.artificial_alpha + fb.artificial_alpha);
-    const float cbar = 0.5f * (fa.speed_of_sound + fb.speed_of_sound);
-    const float pi_ab = -alpha * cbar * k.h * vx / ((r2 + eps2) * (0.5f * (a.rho + b.rho)));
-    s -= mb * pi_ab * grad;
-  }
+  acc += laminar_viscosity_pair(c, a, b, r, r2, grad, vab);
+  if (c.artificial_enabled) s += artificial_viscosity_pair(c, a, b, xab, r2, vab) * grad;
   acc += s * xab;
 }
 
@@ -183,12 +195,14 @@ SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides
       f += pressure_pair<Model::form>(s.wall.mass, s.fluid.near_pressure, s.fluid.near_pressure_rho2, s.fluid.inv_rho,
                                       s.wall.near_pressure, s.wall.near_pressure_rho2, s.wall.inv_rho) * near_dwdr(k, r) * inv_r;
   }
+  // The artificial viscosity at every wall, whatever its slip, as between fluid particles and against the
+  // mirror walls' ghosts: without it nothing damps a particle's motion into and out of the wall, and still
+  // water over a floor of boundary particles heated up (docs/results.md). The laminar viscosity is the wall's
+  // friction ([AIA12] eq. 11), scaled by 1 - slip.
+  const float grad = spiky_dwdr(k, r) * inv_r;
+  if (c.artificial_enabled) f += artificial_viscosity_pair(c, s.fluid, s.wall, xab, r2, s.fluid.vel - vb) * grad;
   Vec3 acc = f * xab;
-  if (friction > 0.0f) {
-    Vec3 viscous{0.0f, 0.0f, 0.0f};
-    pressure_viscosity_pair<NonPressureForces>(c, s.fluid, s.wall, xab, r2, s.fluid.vel - vb, viscous);
-    acc += friction * viscous;
-  }
+  if (friction > 0.0f) acc += friction * laminar_viscosity_pair(c, s.fluid, s.wall, r, r2, grad, s.fluid.vel - vb);
   return acc;
 }
 
