@@ -178,7 +178,7 @@ SPH_HD inline BoundaryPairSides boundary_pair_sides(const PairSide& a) {
 // velocity vb, friction factor. [m/s^2]
 template <class Model>
 SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides& s, Vec3 xab, float r2, float volume,
-                                        Vec3 vb, float friction) {
+                                        Vec3 vb, float friction, Vec3 normal) {
   const KernelCoeffs& k = c.kernel;
   s.wall.mass = s.rho0 * volume;
   s.wall.vel = vb;
@@ -195,14 +195,19 @@ SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides
       f += pressure_pair<Model::form>(s.wall.mass, s.fluid.near_pressure, s.fluid.near_pressure_rho2, s.fluid.inv_rho,
                                       s.wall.near_pressure, s.wall.near_pressure_rho2, s.wall.inv_rho) * near_dwdr(k, r) * inv_r;
   }
-  // The artificial viscosity at every wall, whatever its slip, as between fluid particles and against the
-  // mirror walls' ghosts: without it nothing damps a particle's motion into and out of the wall, and still
-  // water over a floor of boundary particles heated up (docs/results.md). The laminar viscosity is the wall's
-  // friction ([AIA12] eq. 11), scaled by 1 - slip.
+  // The artificial viscosity at every wall on the velocity along the wall's normal, whatever the slip, as
+  // against the mirror walls' ghosts (whose mirrored velocity differs from the particle's only there): without
+  // it nothing damped a particle's motion into and out of the wall, and still water over a floor of boundary
+  // particles heated up (docs/results.md); on the velocity along the wall only with the wall's friction
+  // factor 1 - slip, as the laminar viscosity ([AIA12] eq. 11), so a free-slip wall does not drag.
   const float grad = spiky_dwdr(k, r) * inv_r;
-  if (c.artificial_enabled) f += artificial_viscosity_pair(c, s.fluid, s.wall, xab, r2, s.fluid.vel - vb) * grad;
+  const Vec3 vab = s.fluid.vel - vb;
+  if (c.artificial_enabled) {
+    const Vec3 vn = dot(vab, normal) * normal;
+    f += artificial_viscosity_pair(c, s.fluid, s.wall, xab, r2, vn + friction * (vab - vn)) * grad;
+  }
   Vec3 acc = f * xab;
-  if (friction > 0.0f) acc += friction * laminar_viscosity_pair(c, s.fluid, s.wall, r, r2, grad, s.fluid.vel - vb);
+  if (friction > 0.0f) acc += friction * laminar_viscosity_pair(c, s.fluid, s.wall, r, r2, grad, vab);
   return acc;
 }
 
@@ -213,7 +218,8 @@ SPH_HD inline Vec3 boundary_forces(const SimConstants& c, const GridView& grid, 
   const Vec3 zero{0.0f, 0.0f, 0.0f};
   Vec3 acc = zero;
   for_each_boundary(grid.boundary, xa, c.kernel.h2, [&](int32_t b, Vec3 xab, float r2, float volume) {
-    if (r2 > 0.0f) acc += boundary_pair<Model>(c, s, xab, r2, volume, zero, grid.boundary.friction[b]);
+    if (r2 > 0.0f)
+      acc += boundary_pair<Model>(c, s, xab, r2, volume, zero, grid.boundary.friction[b], xyz(grid.boundary.normal_depth[b]));
   });
   return acc;
 }
@@ -227,7 +233,10 @@ SPH_HD inline Vec3 body_forces(const SimConstants& c, const GridView& grid, cons
   Vec3 acc{0.0f, 0.0f, 0.0f};
   for_each_body_particle(grid.bodies, grid.num_bodies, xa, c.kernel.h2,
                          [&](int32_t k, int32_t b, Vec3 xab, float r2, float volume, Vec3 vb) {
-                           if (r2 > 0.0f) acc += boundary_pair<Model>(c, s, xab, r2, volume, vb, grid.bodies[k].local.friction[b]);
+                           const BodyView& body = grid.bodies[k];
+                           if (r2 > 0.0f)
+                             acc += boundary_pair<Model>(c, s, xab, r2, volume, vb, body.local.friction[b],
+                                                         body_to_world(body, xyz(body.local.normal_depth[b])));
                          });
   return acc;
 }
@@ -247,7 +256,8 @@ SPH_HD inline void body_reaction(const SimConstants& c, const GridView& grid, co
   const float ma = side.mass;
   for_each_body_particle(&bv, 1, xa, c.kernel.h2, [&](int32_t, int32_t b, Vec3 xab, float r2, float volume, Vec3 vb) {
     if (!(r2 > 0.0f)) return;
-    const Vec3 f = -ma * boundary_pair<Model>(c, s, xab, r2, volume, vb, bv.local.friction[b]);
+    const Vec3 f = -ma * boundary_pair<Model>(c, s, xab, r2, volume, vb, bv.local.friction[b],
+                                              body_to_world(bv, xyz(bv.local.normal_depth[b])));
     force += f;
     torque += cross(xa - bv.centre - xab, f);
   });
