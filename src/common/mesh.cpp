@@ -112,6 +112,12 @@ TriangleMesh load_obj_mesh(const std::string& path, const MeshPoint& scale, cons
     }
   }
   if (m.triangles.empty()) throw std::runtime_error(path + ": the mesh has no triangle (no \"f\" lines)");
+  update_bounds(m);
+  return m;
+}
+
+void update_bounds(TriangleMesh& m) {
+  if (m.triangles.empty()) return;
   m.lo = m.hi = m.vertices[std::size_t(m.triangles[0][0])];
   for (const auto& t : m.triangles)
     for (const int v : t)
@@ -119,7 +125,6 @@ TriangleMesh load_obj_mesh(const std::string& path, const MeshPoint& scale, cons
         m.lo[std::size_t(k)] = std::min(m.lo[std::size_t(k)], m.vertices[std::size_t(v)][std::size_t(k)]);
         m.hi[std::size_t(k)] = std::max(m.hi[std::size_t(k)], m.vertices[std::size_t(v)][std::size_t(k)]);
       }
-  return m;
 }
 
 std::string mesh_closure_problem(const TriangleMesh& mesh) {

@@ -26,6 +26,9 @@ struct TriangleMesh {
 // a dozen dependencies to carry to the GPU machine.
 TriangleMesh load_obj_mesh(const std::string& path, const MeshPoint& scale, const MeshPoint& translate);
 
+// Sets mesh.lo and mesh.hi to the bounding box of the vertices its triangles use.
+void update_bounds(TriangleMesh& mesh);
+
 // The first reason the mesh does not bound a solid, or "" when it does: every edge must be shared by exactly
 // two triangles that run along it in opposite directions (closed, manifold, consistently oriented), no
 // triangle may be degenerate (zero area), and the faces must turn counter-clockwise seen from outside

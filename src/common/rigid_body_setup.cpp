@@ -208,11 +208,7 @@ void sample_rigid_bodies(const Scene& scene, const SimConstants& c, double spaci
       solid.slip = float(spec.slip);
       for (std::size_t v = 0; v < solid.mesh.vertices.size(); ++v)
         solid.mesh.vertices[v] = b3(e3(b.centre) + axes * e3(b.surface.vertices[v]));
-      for (std::size_t a = 0; a < 3; ++a) {
-        solid.mesh.lo[a] = solid.mesh.hi[a] = solid.mesh.vertices.front()[a];
-        for (const MeshPoint& v : solid.mesh.vertices)
-          solid.mesh.lo[a] = std::min(solid.mesh.lo[a], v[a]), solid.mesh.hi[a] = std::max(solid.mesh.hi[a], v[a]);
-      }
+      update_bounds(solid.mesh);
       alone.num_shapes = 0;
       meshes.push_back(std::move(solid));
     } else {
