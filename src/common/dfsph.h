@@ -168,6 +168,16 @@ SPH_HD inline float dfsph_divergence_stiffness(float density_rate, float alpha, 
 // wall ghost of j carries j's kappa and density (see above). The solver updates v_i += dt a_i. Each pair term of two
 // particles is antisymmetric (grad W_ji = -grad W_ij), so without walls sum_i m_i a_i = 0: the pressure
 // solves conserve linear momentum (the walls take up what the ghosts give). [m/s^2]
+//
+// Boundary and body particles ([AIA12] volumes, mass rho0 V_b) push as a fluid particle mirrored into the
+// wall would, with kappa_i's share twice (P_b = P_i, rho_b = rho_i), as the mirror ghosts do; the wall's
+// pressure P_b then also grows with depth below x_i (dfsph_boundary_hydrostatic), as WCSPH's boundary pair
+// (forces.h). Measured (docs/results.md, "Bodies under DFSPH"): with kappa_i alone ([BK15] with
+// [AIA12]; SPlisHSPlasH) the walls held the fluid with half the push, so the first layer sat at a quarter
+// of a spacing from the floor instead of a half, and a fixed box 2.6 cm deep carried 0.80 of the
+// hydrostatic force (a floating box of density 500 sank to 0.57 of its height); mirrored without the
+// hydrostatic part the box carried 1.24 and floated at 0.44, since at that depth the pressure changes by
+// half across the kernel's reach. alpha keeps the boundary in |sum grad|^2 only (as the ghosts).
 SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                                const float* kappa, int32_t i) {
   const KernelCoeffs& k = c.kernel;
@@ -183,20 +193,20 @@ SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const Grid
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     if (r2 > 0.0f) acc -= (p.pos_mass[j].w * (ki + kappa[j] / p.density[j]) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
-  // Boundary particles push with kappa_i alone ([BK15] with [AIA12]'s boundary; SPlisHSPlasH): the term
-  // alpha's |sum grad|^2 assumes, so that one Jacobi update of kappa_i meets its own target at a wall.
+  // Boundary and body particles push with the particle's stiffness mirrored (kappa_b / rho_b = kappa_i / rho_i,
+  // dfsph_boundary_hydrostatic adds the hydrostatic rest of P_b).
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
-    if (r2 > 0.0f) acc -= (rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    if (r2 > 0.0f) acc -= (2.0f * rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
   });
   for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
-    if (r2 > 0.0f) acc -= (rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    if (r2 > 0.0f) acc -= (2.0f * rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
   });
   return acc;
 }
 
 // What the pressure solves did between fluid particle i and rigid body `body` ([AIA12] section 4 with [BK15]):
-// the reaction to the body's terms of dfsph_pressure_acceleration, force m_i sum_b rho0 V_b (kappa_i / rho_i)
+// the reaction to the body's terms of dfsph_pressure_acceleration, force m_i sum_b 2 rho0 V_b (kappa_i / rho_i)
 // grad W_ib [N] and its torque about the body's centre [N m], with kappa_i the stiffness the solve applied in
 // all (the kept pressure over rho_i: the solves' velocity changes are linear in kappa, so the sum of what
 // every iteration applied is the term of the total). Summed over the fluid it is minus the momentum the solve gave the fluid
@@ -213,7 +223,59 @@ SPH_HD inline void dfsph_body_reaction(const SimConstants& c, const GridView& gr
   const float mi = p.pos_mass[i].w;
   for_each_body_particle(&bv, 1, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
     if (!(r2 > 0.0f)) return;
-    const Vec3 f = (mi * rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    const Vec3 f = (2.0f * mi * rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    force += f;
+    torque += cross(xi - bv.centre - xib, f);
+  });
+}
+
+// The hydrostatic part of a wall's pressure in a DFSPH step ([Adami et al. 2012] eq. 27, as forces.h's
+// boundary pair): boundary or body particle b at x_i - xib carries P_b = P_i + rho0 g.(x_b - x_i), of which
+// dfsph_pressure_acceleration's mirrored stiffness is the P_i; this is the rest, -rho0 g.x_ib, kept so that
+// P_b >= 0 (a wall never pulls), with P_i the pressure the last density solve ended with (p.pressure, the
+// warm start). It does not depend on the stiffnesses, so it is a force of the step's forces phase. Returns the
+// acceleration of the fluid particle [m/s^2] from one such particle of volume V_b (0 < r2 < h^2).
+SPH_HD inline Vec3 dfsph_wall_hydrostatic_pair(const KernelCoeffs& k, Vec3 gravity, float rho0, float pressure_i,
+                                               Vec3 xib, float r2, float volume) {
+  const float extra = -rho0 * dot(gravity, xib);
+  const float kept = extra > -pressure_i ? extra : -pressure_i;
+  return (-volume * kept / rho0 * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+}
+
+// Fluid particle i's acceleration from the hydrostatic part of every boundary and body particle's pressure
+// in reach (dfsph_wall_hydrostatic_pair). [m/s^2]
+SPH_HD inline Vec3 dfsph_boundary_hydrostatic(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  const float pi = p.pressure[i] > 0.0f ? p.pressure[i] : 0.0f;
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  Vec3 acc{0.0f, 0.0f, 0.0f};
+  for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
+    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(k, c.gravity, rho0, pi, xib, r2, volume);
+  });
+  for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
+    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(k, c.gravity, rho0, pi, xib, r2, volume);
+  });
+  return acc;
+}
+
+// The reaction on body `body` to dfsph_boundary_hydrostatic's share of its particles, force -m_i a [N] and
+// torque about the body's centre [N m]. It reads p.pressure as the forces phase did only if called before the
+// density solve changes it: the DFSPH step calls it after, so under gravity the body's share lags the fluid's
+// by one step's change of pressure (without gravity the term is zero and momentum exact).
+SPH_HD inline void dfsph_body_hydrostatic_reaction(const SimConstants& c, const GridView& grid, const ParticleView& p,
+                                                   int32_t i, int32_t body, Vec3& force, Vec3& torque) {
+  force = torque = Vec3{0.0f, 0.0f, 0.0f};
+  if (p.age[i] < 0.0f) return;
+  const KernelCoeffs& k = c.kernel;
+  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  const float pi = p.pressure[i] > 0.0f ? p.pressure[i] : 0.0f;
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  const BodyView& bv = grid.bodies[body];
+  const float mi = p.pos_mass[i].w;
+  for_each_body_particle(&bv, 1, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
+    if (!(r2 > 0.0f)) return;
+    const Vec3 f = -mi * dfsph_wall_hydrostatic_pair(k, c.gravity, rho0, pi, xib, r2, volume);
     force += f;
     torque += cross(xi - bv.centre - xib, f);
   });

@@ -162,9 +162,22 @@ struct ApplyFn {
   }
 };
 
+// a += the hydrostatic part of the walls' and bodies' pressure (dfsph.h, dfsph_boundary_hydrostatic), in the
+// forces phase: it does not depend on the solves' stiffnesses.
+template <class C>
+struct BoundaryHydrostaticFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) p.acc[i] += dfsph_boundary_hydrostatic(*c, g, p, i);
+  }
+};
+
 // Component `component` (0-2: force x, y, z [N]; 3-5: torque [N m]) of what fluid particle i did to body `body`
 // this step: the reaction to its non-pressure forces from the body's particles (friction; forces.h,
-// body_reaction) and to what both pressure solves applied through them (dfsph.h, dfsph_body_reaction, with
+// body_reaction), to the hydrostatic part of their pressure (dfsph.h) and to what both pressure solves applied
+// through them (dfsph.h, dfsph_body_reaction, with
 // the stiffnesses kept: kappa = P / rho for the density solve, kappa_v = P_v dt / (rho dt) for the divergence
 // solve).
 template <class C>
@@ -178,6 +191,8 @@ struct BodyReactionFn {
   SPH_KERNEL_FN double operator()(int32_t i) const {
     Vec3 force, torque, f, t;
     body_reaction<NonPressureForces>(*c, g, p, i, body, force, torque);
+    dfsph_body_hydrostatic_reaction(*c, g, p, i, body, f, t);
+    force += f, torque += t;
     dfsph_body_reaction(*c, g, p, p.pressure[i] / p.density[i], i, body, f, t);
     force += f, torque += t;
     if ((*c).dfsph.divergence_solver) {
@@ -229,6 +244,8 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
       x.for_each(ForceInputsFn{x.particles()});
       x.for_each(wcsph::ForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
       if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
+      if (x.grid().boundary.n > 0 || x.grid().num_bodies > 0)
+        x.for_each(BoundaryHydrostaticFn<C>{x.constants(), x.grid(), x.particles()});
       return;
     case Phase::Predict: x.for_each(PredictVelocityFn{x.particles(), dt}); return;
     case Phase::DensitySolve:
