@@ -55,7 +55,7 @@ prepare() {
     if [ $kind = bitwise ]; then fmad=OFF; targets="sph_run sph_device_tests"; else fmad=ON; targets="sph_run sph_bench sph_device_tests sph_interop_probe"; fi
     echo "== building the $kind build (sm_90, SPH_CUDA_FMAD=$fmad): $targets"
     cmake -S "$ROOT" -B "$BUNDLE.build/$kind" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CUDA_ARCHITECTURES=90 \
-          -DCMAKE_CUDA_RUNTIME_LIBRARY=Static -DSPH_CUDA_FMAD=$fmad -DSPH_ENABLE_CUDA=ON >"$BUNDLE.build/$kind.configure.log" 2>&1 \
+          -DCMAKE_CUDA_RUNTIME_LIBRARY=Static -DSPH_CUDA_FMAD=$fmad -DSPH_ENABLE_CUDA=ON -DSPH_WITH_OPENVDB=OFF >"$BUNDLE.build/$kind.configure.log" 2>&1 \
       || { tail -20 "$BUNDLE.build/$kind.configure.log"; echo "gpu_check.sh: configure failed ($kind)" >&2; exit 1; }
     grep -q '^CMAKE_CUDA_COMPILER:.*nvcc' "$BUNDLE.build/$kind/CMakeCache.txt" \
       || { echo "gpu_check.sh: cmake did not take nvcc ($kind); see $BUNDLE.build/$kind.configure.log" >&2; exit 1; }

@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(cmake make g++ pkg-config nlohmann-json3-dev libcli11-dev catch2 libeigen3-dev libtinyobjloader-dev
           libglfw3-dev libglew-dev libimgui-dev libstb-dev xvfb xauth libgl1-mesa-dri python3-matplotlib
-          clang libclang-rt-14-dev)
+          clang libclang-rt-14-dev libopenvdb-dev libboost-iostreams-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

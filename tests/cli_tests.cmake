@@ -458,3 +458,41 @@ sph_cli_test(probes_outside_domain
   --exit 0 --stderr "probes.0 (\"H1\")" --stderr "outside the domain" --stderr "will read 0"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break_obstacle.json --set resolution.spacing=0.05 "--set=probes.0.position=[5,0,0.5]"
      --steps 2 --out ${SPH_CLI_OUT}/probes_outside)
+
+# --- surface meshes (issue 14; OpenVDB builds) ----------------------------------------------------------
+if(SPH_WITH_OPENVDB)
+  set(SPH_SURFACE $<TARGET_FILE:sph_surface>)
+  # A short run writes a surface mesh at the start and at each interval, beside its frames.
+  sph_cli_test(surface_every
+    --exit 0 --clean ${SPH_CLI_OUT}/surface_every --file ${SPH_CLI_OUT}/surface_every/surface_00000.ply
+    --file ${SPH_CLI_OUT}/surface_every/surface_00002.ply
+    -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json -t 0.02 --frames-every 0.01 --surface-every 0.01 -q
+       --out ${SPH_CLI_OUT}/surface_every)
+  sph_cli_test(surface_every_nan
+    --exit 1 --stderr "--surface-every" --stderr "not a finite number"
+    -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --surface-every nan --out ${SPH_CLI_OUT}/surface_every_nan)
+  sph_cli_test(surface_resolution_range
+    --exit 1 --stderr "--surface-resolution" --stderr "[1, 8]"
+    -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --surface-every 0.1 --surface-resolution 50
+       --out ${SPH_CLI_OUT}/surface_resolution_range)
+  # sph_surface meshes the frames of a folder (the frames of surface_every), next to them or into --out.
+  sph_cli_test(surface_tool
+    --exit 0 --clean ${SPH_CLI_OUT}/surface_tool --stdout "[3/3]" --stdout "triangles"
+    --file ${SPH_CLI_OUT}/surface_tool/surface_00001.ply
+    --setup "${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json -t 0.02 --frames-every 0.01 -q --out ${SPH_CLI_OUT}/surface_tool"
+    -- ${SPH_SURFACE} ${SPH_CLI_OUT}/surface_tool)
+  sph_cli_test(surface_tool_missing
+    --exit 1 --stderr "no_such_folder" --stderr "no such file or folder"
+    -- ${SPH_SURFACE} ${SPH_CLI_OUT}/no_such_folder)
+  sph_cli_test(surface_tool_empty_folder
+    --exit 1 --clean ${SPH_CLI_OUT}/surface_tool_empty --stderr "no frame_NNNNN.ply"
+    --setup "mkdir -p ${SPH_CLI_OUT}/surface_tool_empty"
+    -- ${SPH_SURFACE} ${SPH_CLI_OUT}/surface_tool_empty)
+  sph_cli_test(surface_tool_corrupt_frame
+    --exit 1 --clean ${SPH_CLI_OUT}/surface_tool_corrupt --stderr "frame_00000.ply"
+    --setup "mkdir -p ${SPH_CLI_OUT}/surface_tool_corrupt && printf 'ply\\nformat ascii 1.0\\nend_header\\n' > ${SPH_CLI_OUT}/surface_tool_corrupt/frame_00000.ply"
+    -- ${SPH_SURFACE} ${SPH_CLI_OUT}/surface_tool_corrupt)
+  sph_cli_test(surface_tool_resolution
+    --exit 1 --stderr "--resolution" --stderr "[1, 8]"
+    -- ${SPH_SURFACE} ${SPH_CLI_DATA} --resolution 0)
+endif()

@@ -31,6 +31,7 @@
 #include "option_values.h"
 #include "state_checks.h"
 #include "stop_signals.h"
+#include "surface_output.h"
 
 namespace fs = std::filesystem;
 using namespace sph;
@@ -52,6 +53,8 @@ struct Options {
   std::string out = "out";
   double frames_every = -1.0;  // < 0: the scene's run.frames_every
   double metrics_every = 0.0;
+  double surface_every = 0.0;       // > 0: a surface mesh OUT/surface_NNNNN.ply every this many seconds
+  double surface_resolution = 2.0;  // voxels per particle spacing
   std::vector<std::string> sets;
   bool quiet = false;
   std::string restart;  // frame to continue from
@@ -314,6 +317,17 @@ int run(const Options& o) {
     }
     ++frame;
   };
+  int surface = 0;  // surface_NNNNN.ply holds the surface at time NNNNN x --surface-every (so a restart numbers on)
+  auto write_surface_mesh = [&] {
+    const ParticleState& ps = sim.particles();
+    const std::string path = (fs::path(o.out) / surface_file_name(surface)).string();
+    try {
+      write_surface(path, std::vector<Vec3>(ps.pos.begin(), ps.pos.end()), st.spacing, o.surface_resolution, sim.time());
+    } catch (const std::runtime_error& e) {
+      throw OutputError(e.what());
+    }
+    ++surface;
+  };
 
   // From here on a signal stops the run after the current step; during the set-up above it ends the
   // program at once (the set-up may take minutes, and nothing but the metrics header is written then).
@@ -326,7 +340,12 @@ int run(const Options& o) {
   int status = kDone;
   std::string output_error;
   try {
-    double next_frame = 0.0, next_metrics = 0.0;
+    double next_frame = 0.0, next_metrics = 0.0, next_surface = 0.0;
+    if (o.surface_every > 0.0) {
+      surface = int(std::llround(sim.time() / o.surface_every));
+      write_surface_mesh();
+      next_surface = sim.time() + o.surface_every;
+    }
     if (frames_every > 0.0) {
       if (!restart) write_frame();  // a continued run starts from a frame that already exists
       next_frame = frame_time_after(restart ? restart->info.frame_index : 0, frames_every);
@@ -359,6 +378,10 @@ int run(const Options& o) {
       if (frames_every > 0.0 && sim.time() >= next_frame - 1e-12) {
         write_frame();
         next_frame += frames_every;
+      }
+      if (o.surface_every > 0.0 && sim.time() >= next_surface - 1e-12) {
+        write_surface_mesh();
+        next_surface += o.surface_every;
       }
       if (tty && std::chrono::duration<double>(t1 - last_progress).count() > 0.25) {
         last_progress = t1;
@@ -418,7 +441,8 @@ int run(const Options& o) {
 
 // Reads the numeric options from their text (see option_values.h); throws OptionError.
 void check_numbers(const CLI::App& app, Options& o, const std::string& time, const std::string& steps,
-                   const std::string& frames_every, const std::string& metrics_every) {
+                   const std::string& frames_every, const std::string& metrics_every, const std::string& surface_every,
+                   const std::string& surface_resolution) {
   if (o.out.empty()) throw OptionError("--out: the output directory must be a non-empty path");
   if (app.count("--time")) o.time = finite_option("--time", time, 0.0, kMaxTime, true, "seconds");
   if (app.count("--steps")) o.steps = whole_option("--steps", steps, 1, kMaxSteps);
@@ -426,13 +450,20 @@ void check_numbers(const CLI::App& app, Options& o, const std::string& time, con
     o.frames_every = finite_option("--frames-every", frames_every, 0.0, kMaxTime, false, "seconds");
   if (app.count("--metrics-every"))
     o.metrics_every = finite_option("--metrics-every", metrics_every, 0.0, kMaxTime, false, "seconds");
+  if (app.count("--surface-every"))
+    o.surface_every = finite_option("--surface-every", surface_every, 0.0, kMaxTime, false, "seconds");
+  if (app.count("--surface-resolution"))
+    o.surface_resolution = finite_option("--surface-resolution", surface_resolution, 1.0, 8.0, false, "voxels per spacing");
+  if (o.surface_every > 0.0 && !surfaces_built_in())
+    throw OptionError("--surface-every: this sph_run was built without surface meshes (-DSPH_WITH_OPENVDB=OFF); "
+                      "rebuild with libopenvdb-dev installed");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options o;
-  std::string time, steps, frames_every, metrics_every;
+  std::string time, steps, frames_every, metrics_every, surface_every, surface_resolution;
   CLI::App app{
       "sph_run: run an SPH scene headless and record what happens.\n\n"
       "Writes OUT/metrics.csv (time, dt, step, kinetic_energy, potential_energy, energy_budget, density_error_mean,\n"
@@ -441,7 +472,8 @@ int main(int argc, char** argv) {
       "(m: the deepest any fluid particle is inside a wall, obstacle or body), particles_in_solids (deeper than\n"
       "half a spacing), then depth_<name> for each of the scene's \"probes\" (water-height gauges) and, for each\n"
       "rigid body k, body<k>_x, _y, _z, _vx, _vy, _vz, _qw, _qx, _qy, _qz (orientation), _fx, _fy, _fz; flushed at\n"
-      "least once per second) and, with --frames-every, PLY point clouds OUT/frame_NNNNN.ply (ParaView, Blender). Ends\n"
+      "least once per second), with --frames-every PLY point clouds OUT/frame_NNNNN.ply and with --surface-every\n"
+      "surface meshes OUT/surface_NNNNN.ply (ParaView, Blender). Ends\n"
       "with a summary: particles, steps, ms_per_step (median) and ms_per_step_mean, phase_ms_per_step_mean (time by\n"
       "phase), the solver and, for DFSPH and PBF, iterations per step and steps that reached the iteration cap.\n"
       "The pressure solver is the scene's \"solver\": wcsph (default), dfsph or pbf (--set solver=dfsph).\n"
@@ -466,6 +498,11 @@ int main(int argc, char** argv) {
   app.add_option("--set,-s", o.sets,
                  "override a scene value, key=value with a dotted path, repeatable; for example\n"
                  "--set fluids.0.viscosity=0.01 --set resolution.particles_across=40 --set integrator=leapfrog");
+  app.add_option("--surface-every", surface_every,
+                 "write the fluid's surface as a closed triangle mesh OUT/surface_NNNNN.ply (binary PLY, OpenVDB; for\n"
+                 "Blender and ParaView) every this many simulated seconds, in [0, 1e7] (0: none, the default)");
+  app.add_option("--surface-resolution", surface_resolution,
+                 "voxels per particle spacing of the surface meshes, in [1, 8] (default 2)");
   app.add_flag("--quiet,-q", o.quiet, "no progress line");
   app.add_option("--restart", o.restart,
                  "continue the run from a frame OUT/frame_NNNNN.ply of this scene: the state, time, step and jets\n"
@@ -473,7 +510,7 @@ int main(int argc, char** argv) {
                  "are numbered on from NNNNN + 1");
   try {
     app.parse(argc, argv);
-    check_numbers(app, o, time, steps, frames_every, metrics_every);
+    check_numbers(app, o, time, steps, frames_every, metrics_every, surface_every, surface_resolution);
   } catch (const CLI::ParseError& e) {
     // --help exits 0; every parse error is bad input (CLI11's own codes, 104 to 109, are not documented).
     return app.exit(e) == 0 ? kDone : kBadInput;
