@@ -47,4 +47,19 @@ inline double clustered_fraction(const sph::ParticleState& ps, double distance) 
   return ps.size() ? double(count) / double(ps.size()) : 0.0;
 }
 
+// Runs sim until `until` [s] and returns rigid body `body`'s mean centre height (y) [m] over the steps that
+// end after `from` [s] (0 when none do).
+inline double mean_body_height(sph::Simulation& sim, double from, double until, std::size_t body = 0) {
+  double sum = 0.0;
+  int samples = 0;
+  while (sim.time() < until) {
+    sim.advance();
+    if (sim.time() > from) {
+      sum += sim.backend().bodies().at(body).centre[1];
+      ++samples;
+    }
+  }
+  return samples > 0 ? sum / samples : 0.0;
+}
+
 }  // namespace sph_test

@@ -112,16 +112,7 @@ TEST_CASE("mesh bodies: a mesh box of density 500 floats half submerged", "[bodi
   sph::Scene scene = scene_file("floating_box.json");
   scene.bodies = {mesh_body(kBox12, {0.08, 0.06, 0.08}, {0.16, 0.16, 0.06}, 500.0)};
   sph::Simulation sim(scene, cpu_factory(), 1.5);
-  double mean_centre = 0.0;
-  int samples = 0;
-  while (sim.time() < 1.5) {
-    sim.advance();
-    if (sim.time() > 1.0) {
-      mean_centre += sim.backend().bodies().at(0).centre[1];
-      ++samples;
-    }
-  }
-  mean_centre /= samples;
+  const double mean_centre = mean_body_height(sim, 1.0, 1.5);
   const double submerged_volume = sim.backend().bodies().at(0).mass / 1000.0;
   const double level = 0.15 + submerged_volume / surface;
   const double submerged = (level - (mean_centre - 0.5 * height)) / height;

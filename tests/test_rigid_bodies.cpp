@@ -22,17 +22,7 @@ TEST_CASE("rigid bodies: a box of density 500 floats half submerged, one of 2000
     const sph::Scene scene =
         scene_file("floating_box.json", {"bodies.0.density=" + std::to_string(density), "resolution.spacing=0.0125"});
     sph::Simulation sim(scene, cpu_factory(), 1.5);
-    double mean_centre = 0.0;
-    int samples = 0;
-    while (sim.time() < 1.5) {
-      sim.advance();
-      if (sim.time() > 1.0) {  // the last half second, past the first bobbing
-        mean_centre += sim.backend().bodies().at(0).centre[1];
-        ++samples;
-      }
-    }
-    REQUIRE(samples > 0);
-    mean_centre /= double(samples);
+    const double mean_centre = mean_body_height(sim, 1.0, 1.5);  // the last half second, past the first bobbing
     const sph::RigidBody& b = sim.backend().bodies().at(0);
     const double bottom = mean_centre - 0.5 * height;
     INFO("density " << density << ": box centre y " << mean_centre << " m (mean over 1 to 1.5 s), bottom " << bottom
@@ -58,17 +48,7 @@ TEST_CASE("rigid bodies: under DFSPH a box of density 500 floats half submerged"
   const double height = 0.06, footprint = 0.08 * 0.08, surface = 0.4 * 0.2 - footprint;
   const sph::Scene scene = scene_file("floating_box.json", {"solver=dfsph", "resolution.spacing=0.0125"});
   sph::Simulation sim(scene, cpu_factory(), 1.5);
-  double mean_centre = 0.0;
-  int samples = 0;
-  while (sim.time() < 1.5) {
-    sim.advance();
-    if (sim.time() > 1.0) {
-      mean_centre += sim.backend().bodies().at(0).centre[1];
-      ++samples;
-    }
-  }
-  REQUIRE(samples > 0);
-  mean_centre /= double(samples);
+  const double mean_centre = mean_body_height(sim, 1.0, 1.5);
   const double level = 0.15 + footprint * 0.5 * height / surface;
   const double submerged = (level - (mean_centre - 0.5 * height)) / height;
   INFO("box centre y " << mean_centre << " m (mean over 1 to 1.5 s), still-water level " << level << " m: submerged "

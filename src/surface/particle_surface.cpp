@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetFilter.h>
@@ -67,7 +70,7 @@ TriangleMesh mesh_of(const openvdb::FloatGrid& grid) {
 // iterations from the first guess (V0 - N d^3) / area; eroding also shrinks the rounded edges, so the
 // guess alone over-erodes by about 6% of a spacing). The rasterised spheres bulge between their centres and
 // smoothing shrinks the bulges and rounds edges, so the erosion is measured rather than derived.
-double calibrated_erosion(const SurfaceOptions& o) {
+double measured_erosion(const SurfaceOptions& o) {
   const double d = o.spacing;
   const int nx = 16, ny = 16, nz = 8;
   std::vector<Vec3> slab;
@@ -91,6 +94,22 @@ double calibrated_erosion(const SurfaceOptions& o) {
     x1 = x2, f1 = excess(x1);
   }
   return x1;
+}
+
+// measured_erosion in units of the spacing, measured once per radius, resolution and smoothing (the geometry
+// scales with d; it costs about 0.17 s, a tenth of a 100k-particle frame).
+double calibrated_erosion(const SurfaceOptions& o) {
+  static std::mutex mutex;
+  static std::map<std::tuple<double, double, int>, double> per_spacing;
+  const auto key = std::make_tuple(o.radius, o.voxels_per_spacing, o.smoothing);
+  std::lock_guard<std::mutex> lock(mutex);
+  auto it = per_spacing.find(key);
+  if (it == per_spacing.end()) {
+    SurfaceOptions unit = o;
+    unit.spacing = 1.0;
+    it = per_spacing.emplace(key, measured_erosion(unit)).first;
+  }
+  return it->second * o.spacing;
 }
 
 }  // namespace
