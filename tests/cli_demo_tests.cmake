@@ -124,3 +124,33 @@ unset(_scenes)
 add_test(NAME demo_paused_sleeps
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/demo_paused_test.sh ${SPH_DEMO} ${SPH_CLI_SCENES}/thesis_perf_cube.json)
 set_tests_properties(demo_paused_sleeps PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77)
+
+# --- sph_demo --replay (issue 14): an sph_run recording played back ------------------------------------
+set(_rec ${SPH_CLI_OUT}/replay_recording)
+set(_record "rm -rf ${_rec} && ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json -b cpu -t 0.1 --frames-every 0.05 -q --out ${_rec}")
+# Two frames of 1/30 s at real-time speed reach t = 0.067 s: the frame of 0.05 s is shown.
+sph_demo_xvfb_test(demo_replay_plays
+  --exit 0 --setup "${_record}" --stdout-line "recorded_frames: 3" --stdout-line "shown_frame: 1"
+  --stdout-line "particles: 2000" --file ${SPH_CLI_OUT}/replay.png
+  -- ${SPH_XVFB} ${SPH_DEMO} --replay ${_rec} --scene ${SPH_CLI_SCENES}/hydrostatic_tank.json --frames 2
+     --screenshot ${SPH_CLI_OUT}/replay.png)
+# Space pauses; N steps on twice, to the last frame, and playback does not move it.
+sph_demo_xvfb_test(demo_replay_pause_and_step
+  --exit 0 --setup "${_record}" --stdout-line "shown_frame: 2"
+  -- ${SPH_XVFB} ${SPH_DEMO} --replay ${_rec} --keys " NN" --frames 6)
+# A recording that cannot be played is refused before any window opens (no display needed).
+sph_cli_test(demo_replay_no_folder --exit 1 --stderr "--replay" --stderr "no such folder"
+  -- ${SPH_DEMO} --replay ${SPH_CLI_OUT}/no_such_recording)
+sph_cli_test(demo_replay_empty --exit 1 --stderr "no frame_NNNNN.ply"
+  --setup "rm -rf ${SPH_CLI_OUT}/replay_empty && mkdir -p ${SPH_CLI_OUT}/replay_empty"
+  -- ${SPH_DEMO} --replay ${SPH_CLI_OUT}/replay_empty)
+sph_cli_test(demo_replay_corrupt --exit 1 --stderr "frame_00001.ply"
+  --setup "${_record} && head -c 300 ${_rec}/frame_00001.ply > ${SPH_CLI_OUT}/cut.ply && mv ${SPH_CLI_OUT}/cut.ply ${_rec}/frame_00001.ply"
+  -- ${SPH_DEMO} --replay ${_rec})
+sph_cli_test(demo_replay_mixed_runs --exit 1 --stderr "frame_00003.ply" --stderr "another run"
+  --setup "${_record} && ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json -b cpu -n 1 -q --set resolution.particles_across=8 --frames-every 1 --out ${SPH_CLI_OUT}/replay_other && cp ${SPH_CLI_OUT}/replay_other/frame_00000.ply ${_rec}/frame_00003.ply"
+  -- ${SPH_DEMO} --replay ${_rec})
+set_tests_properties(cli_demo_replay_plays cli_demo_replay_pause_and_step cli_demo_replay_no_folder cli_demo_replay_empty
+                     cli_demo_replay_corrupt cli_demo_replay_mixed_runs PROPERTIES RESOURCE_LOCK replay_recording)
+unset(_record)
+unset(_rec)

@@ -31,6 +31,10 @@ int parse_demo_options(int argc, char** argv, DemoOptions& o) {
       ->capture_default_str()->check(CLI::IsMember({"fluid", "speed", "density_error", "pressure", "cell"}));
   app.add_option("--budget-ms", o.budget_ms, "simulation time budget per frame, milliseconds")->capture_default_str();
   app.add_option("--set,-s", o.sets, "override a scene value, key=value (as sph_run)");
+  app.add_option("--replay", o.replay,
+                 "play the frames (frame_NNNNN.ply) of an sph_run output folder at their recorded times instead of\n"
+                 "simulating: space plays or pauses, N and B step, L loops, + and - change the speed, the panel seeks;\n"
+                 "the colours' rest densities come from the scene NAME.json beside --scene's file");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -17,6 +17,7 @@ struct DemoOptions {
   std::string colour = "speed";
   std::vector<std::string> sets;
   double budget_ms = 40.0;  // simulation time per frame [ms], finite and > 0
+  std::string replay;       // non-empty: play this sph_run output folder's frames instead of simulating
 };
 
 // Parses argv into o. Returns -1 when the demo should run, else the exit status: 0 after --help, 1 with a

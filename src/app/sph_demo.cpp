@@ -26,6 +26,7 @@
 #include "../render/ui_panel.h"
 #include "backends.h"
 #include "demo_options.h"
+#include "demo_replay.h"
 #include "demo_scenes.h"
 
 using namespace sph;
@@ -439,7 +440,8 @@ void on_scroll(GLFWwindow* w, double, double dy) {
 }
 void on_glfw_error(int code, const char* text) { std::cerr << "GLFW error " << code << ": " << text << "\n"; }
 
-int run(const DemoOptions& o) {
+// The window, OpenGL and Dear ImGui, then the live demo, or the replay of `recording` when there is one.
+int run(const DemoOptions& o, const Recording* recording) {
   glfwSetErrorCallback(on_glfw_error);
   const char* display = std::getenv("DISPLAY");
   if (!glfwInit() || !display || !*display) {
@@ -483,6 +485,9 @@ int run(const DemoOptions& o) {
 
   int status = 0;
   try {
+    if (recording) {
+      status = run_replay(window, o, *recording);
+    } else {
     Demo demo(window, o);
     glfwSetWindowUserPointer(window, &demo);
     glfwSetKeyCallback(window, on_key);
@@ -516,6 +521,7 @@ int run(const DemoOptions& o) {
         std::fflush(stdout);
       }
     }
+    }
   } catch (const BlowUp& e) {  // exit statuses as sph_run: 3 unstable, 1 bad input (a scene's limits)
     std::cerr << "\nerror: " << e.what() << "\n";
     status = 3;
@@ -537,9 +543,13 @@ int main(int argc, char** argv) {
   DemoOptions o;
   if (const int status = parse_demo_options(argc, argv, o); status >= 0) return status;
   try {
+    if (!o.replay.empty()) {  // a recording that cannot be played is refused before any window opens
+      const Recording recording = load_recording(o.replay);
+      return run(o, &recording);
+    }
     (void)load_scene(o.scene, o.sets);  // bad scene or back end: a clear message before any window opens
     (void)backend_factory(o.backend);
-    return run(o);
+    return run(o, nullptr);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;
