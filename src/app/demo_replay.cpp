@@ -136,7 +136,8 @@ class Replay {
     panel();
     glFinish();  // so that the drawing time is the renderer's, not only the commands' submission
     draw_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d0).count();
-    fps_ = frames_ == 0 ? 1.0 / std::max(wall_seconds, 1e-6) : 0.9 * fps_ + 0.1 / std::max(wall_seconds, 1e-6);
+    // Frames per second over the last second or so of wall time (the first frame's interval is the set-up's).
+    if (frames_ > 0) fps_ = fps_ == 0.0 ? 1.0 / std::max(wall_seconds, 1e-6) : 0.8 * fps_ + 0.2 / std::max(wall_seconds, 1e-6);
     ++frames_;
   }
 
