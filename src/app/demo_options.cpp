@@ -19,16 +19,18 @@ int parse_demo_options(int argc, char** argv, DemoOptions& o) {
   app.add_option("--backend,-b", o.backend, "back end: cpu, host or cuda")->capture_default_str();
   app.add_option("--frames", o.frames, "render this many frames without input, then exit (headless runs)");
   app.add_option("--screenshot", o.screenshot, "with --frames: write the last frame to this PNG");
-  app.add_option("--keys", o.keys, "press these keys, one per frame from the first (space N R [ ] B C V G D + -)")
+  app.add_option("--keys", o.keys, "press these keys, one per frame from the first (space N R [ ] B C V G D S L + -)")
       ->check([](const std::string& k) {
-        return k.find_first_not_of(" NRBCVGD[]+-") == std::string::npos ? std::string()
-                                                                           : "allowed keys: space N R [ ] B C V G D + -";
+        return k.find_first_not_of(" NRBCVGDSL[]+-") == std::string::npos ? std::string()
+                                                                             : "allowed keys: space N R [ ] B C V G D S L + -";
       });
   app.add_option("--width", o.width, "window width")->capture_default_str()->check(CLI::Range(64, 8192));
   app.add_option("--height", o.height, "window height")->capture_default_str()->check(CLI::Range(64, 8192));
   app.add_option("--substeps", o.substeps, "simulation steps per frame (default: about 1/60 s per frame)");
   app.add_option("--colour", o.colour, "fluid, speed, density_error, pressure or cell")
       ->capture_default_str()->check(CLI::IsMember({"fluid", "speed", "density_error", "pressure", "cell"}));
+  app.add_option("--render", o.render, "spheres, or surface: the screen-space fluid surface (S toggles)")
+      ->capture_default_str()->check(CLI::IsMember({"spheres", "surface"}));
   app.add_option("--budget-ms", o.budget_ms, "simulation time budget per frame, milliseconds")->capture_default_str();
   app.add_option("--set,-s", o.sets, "override a scene value, key=value (as sph_run)");
   app.add_option("--replay", o.replay,

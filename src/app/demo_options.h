@@ -15,6 +15,7 @@ struct DemoOptions {
   int width = 1280, height = 720;
   int substeps = 0;      // 0: about 1/60 s of simulated time per frame
   std::string colour = "speed";
+  std::string render = "spheres";  // "spheres" or "surface" (screen-space fluid surface)
   std::vector<std::string> sets;
   double budget_ms = 40.0;  // simulation time per frame [ms], finite and > 0
   std::string replay;       // non-empty: play this sph_run output folder's frames instead of simulating

@@ -21,9 +21,11 @@
 #include "../common/guided_creation.h"
 #include "../common/scene.h"
 #include "../render/camera.h"
+#include "../render/fluid_surface.h"
 #include "../render/particle_renderer.h"
 #include "../render/scene_lines.h"
 #include "../render/screenshot.h"
+#include "../render/ui_panel.h"
 
 namespace fs = std::filesystem;
 
@@ -35,6 +37,8 @@ namespace {
 
 // Memory one particle of a frame takes in a ParticleState [bytes]: its arrays (particle_state.h), rounded up.
 constexpr double kReplayBytesPerParticle = 128.0;
+
+const Vec3 kBackground{0.11f, 0.12f, 0.14f};  // the clear colour, seen through the surface's water
 
 // A recording's frames are refused when their particles need more than this fraction of the machine's memory.
 constexpr double kReplayMemoryShare = 0.8;
@@ -104,6 +108,7 @@ class Replay {
     camera_.yaw = 0.0f;
     camera_.pitch = 0.35f;
     radius_ = 0.5f * float(rec_.frames.front().info.spacing);
+    surface_ = o.render == "surface";
     clock_ = rec_.frames.front().info.time;
     show(0);
   }
@@ -128,11 +133,13 @@ class Replay {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     glViewport(0, 0, w, h);
-    glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
+    glClearColor(kBackground.x, kBackground.y, kBackground.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const Mat4 view = camera_.view(), proj = camera_.projection(float(w) / float(std::max(h, 1)));
     lines_.draw(view, proj);
-    particles_.draw(view, proj, radius_, h, flat_);
+    if (surface_)
+      surface_renderer_.draw(particles_, view, proj, radius_, camera_.distance, lo_, hi_, w, h, look_, kBackground);
+    else particles_.draw(view, proj, radius_, h, flat_);
     panel();
     glFinish();  // so that the drawing time is the renderer's, not only the commands' submission
     draw_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d0).count();
@@ -142,7 +149,7 @@ class Replay {
   }
 
   // Space: play or pause; N, B: the next or previous frame (pausing); L: loop; C: colour; V: flat points;
-  // + and -: twice or half the speed; Escape: quit.
+  // S: surface; + and -: twice or half the speed; Escape: quit.
   void key(int k) {
     switch (k) {
       case GLFW_KEY_SPACE: playing_ = !playing_; break;
@@ -151,6 +158,7 @@ class Replay {
       case GLFW_KEY_L: loop_ = !loop_; break;
       case GLFW_KEY_C: colour_ = (colour_ + 1) % int(ColourMode::Count); break;
       case GLFW_KEY_V: flat_ = !flat_; break;
+      case GLFW_KEY_S: surface_ = !surface_; break;
       case GLFW_KEY_EQUAL:
       case GLFW_KEY_KP_ADD: speed_ = std::min(64.0, speed_ * 2.0); break;
       case GLFW_KEY_MINUS:
@@ -273,6 +281,7 @@ class Replay {
     const char* names[] = {"fluid", "speed", "density error", "pressure", "grid cell"};
     ImGui::Combo("colour (C)", &colour_, names, int(ColourMode::Count));
     ImGui::Checkbox("flat points (V)", &flat_);
+    surface_controls(surface_, look_);
     if (legend_.unit && *legend_.unit) ImGui::Text("colour scale: %.3g to %.3g %s", legend_.lo, legend_.hi, legend_.unit);
     ImGui::Text("%.1f fps, drawing %.1f ms", fps_, draw_ms_);
     ImGui::TextWrapped("%s", note_.c_str());
@@ -286,6 +295,8 @@ class Replay {
   const Recording& rec_;
   SimConstants constants_{};
   ParticleRenderer particles_;
+  FluidSurfaceRenderer surface_renderer_;
+  SurfaceLook look_;
   SceneLines lines_;
   OrbitCamera camera_;
   ColourRange legend_{0.0f, 1.0f, ""};
@@ -295,7 +306,7 @@ class Replay {
   double clock_ = 0.0, speed_ = 1.0, fps_ = 0.0, draw_ms_ = 0.0, last_x_ = 0.0, last_y_ = 0.0;
   int colour_ = int(ColourMode::Speed), shown_colour_ = -1;
   float radius_ = 0.01f;
-  bool playing_ = true, loop_ = true, flat_ = false;
+  bool playing_ = true, loop_ = true, flat_ = false, surface_ = false;
   long frames_ = 0;
 };
 

@@ -20,6 +20,7 @@
 #include "../common/metrics.h"
 #include "../common/simulation.h"
 #include "../render/camera.h"
+#include "../render/fluid_surface.h"
 #include "../render/particle_renderer.h"
 #include "../render/scene_lines.h"
 #include "../render/screenshot.h"
@@ -35,6 +36,7 @@ using namespace sph::render;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+const Vec3 kBackground{0.11f, 0.12f, 0.14f};  // the clear colour, also what the surface shows through the water
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 class Demo {
@@ -49,6 +51,7 @@ class Demo {
       if (o.colour == modes[i]) panel_.colour_mode = i;
     start(0, load(0));
     if (o.substeps > 0) panel_.substeps = o.substeps;
+    panel_.surface = o.render == "surface";
   }
   // The back end unregisters the vertex buffers (interop) before particles_ deletes them.
   ~Demo() { sim_.reset(); }
@@ -157,7 +160,7 @@ class Demo {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     glViewport(0, 0, w, h);
-    glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
+    glClearColor(kBackground.x, kBackground.y, kBackground.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const Mat4 view = camera_.view(), proj = camera_.projection(float(w) / float(std::max(h, 1)));
     if (!sim_->backend().bodies().empty()) lines_.set_bodies(sim_->backend().bodies());
@@ -166,8 +169,11 @@ class Demo {
       upload_walls();
       walls_.draw(view, proj, radius_, h, panel_.flat_points);
     }
-    particles_.draw(view, proj, radius_, h, panel_.flat_points);
+    if (panel_.surface)
+      surface_.draw(particles_, view, proj, radius_, camera_.distance, lo_, hi_, w, h, panel_.look, kBackground);
+    else particles_.draw(view, proj, radius_, h, panel_.flat_points);
     draw_ui(ps);
+    glFinish();  // the drawing time is the renderer's, not only the commands' submission
     panel_.draw_ms = ms_since(d0);
 
     // Frames per second from one frame's start to the next, so waiting (paused) and swapping count too.
@@ -224,6 +230,7 @@ class Demo {
       case GLFW_KEY_KP_SUBTRACT: panel_.substeps = std::max(1, panel_.substeps / 2); break;
       case GLFW_KEY_C: panel_.colour_mode = (panel_.colour_mode + 1) % int(ColourMode::Count); break;
       case GLFW_KEY_V: panel_.flat_points = !panel_.flat_points; break;
+      case GLFW_KEY_S: panel_.surface = !panel_.surface; break;
       case GLFW_KEY_G: panel_.show_walls = !panel_.show_walls; break;
       case GLFW_KEY_D: drop_box(); break;
       case GLFW_KEY_P: screenshot_requested_ = true; break;
@@ -403,6 +410,7 @@ class Demo {
   ParticleState stats_;  // last downloaded state (every frame, or every 30th with interop)
   SimConstants base_{};
   ParticleRenderer particles_;
+  FluidSurfaceRenderer surface_;  // the screen-space surface (S), drawn from particles_' buffers
   ParticleRenderer walls_;  // the walls' boundary particles (G)
   std::vector<Vec3> wall_points_;
   int drops_ = 0;  // boxes dropped with D

@@ -69,6 +69,10 @@ void ParticleRenderer::draw(const Mat4& view, const Mat4& projection, float radi
   const Vec3 light = normalise(transform_direction(view, Vec3{0.4f, 1.0f, 0.6f}));
   glUniform3f(program_.uniform("u_light"), light.x, light.y, light.z);
   glUniform1i(program_.uniform("u_flat"), flat ? 1 : 0);
+  draw_points();
+}
+
+void ParticleRenderer::draw_points() const {
   glBindVertexArray(vao_);
   glDrawArrays(GL_POINTS, 0, count_);
   glBindVertexArray(0);

@@ -28,6 +28,9 @@ class ParticleRenderer {
   // Uploads points of one colour (the walls' boundary particles).
   void upload_points(const std::vector<Vec3>& positions, Vec3 colour);
   void draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat) const;
+  // The particles as GL_POINTS with the program in use (the fluid surface's passes).
+  void draw_points() const;
+  GLsizei count() const { return count_; }
 
   // For interop: make both VBOs hold at least n particles (growing by doubling; every reallocation
   // changes generation()), then let the back end write them and set the count to draw. A reallocation

@@ -30,6 +30,17 @@ void legend(const PanelModel& m) {
 
 }  // namespace
 
+bool surface_controls(bool& surface, SurfaceLook& look) {
+  bool changed = ImGui::Checkbox("surface (S)", &surface);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("screen-space fluid surface (smoothed sphere depth) instead of spheres");
+  if (!surface) return changed;
+  changed |= ImGui::SliderInt("smoothing passes", &look.smoothing_iterations, 0, 20);
+  changed |= ImGui::SliderFloat("sphere size", &look.radius_scale, 1.0f, 3.0f, "%.2f x d/2");
+  changed |= ImGui::ColorEdit3("water colour", &look.colour.x);
+  changed |= ImGui::SliderFloat("absorption [1/m]", &look.absorption, 0.0f, 400.0f, "%.3g", ImGuiSliderFlags_Logarithmic);
+  return changed;
+}
+
 bool draw_panel(PanelModel& m) {
   bool changed = false;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
@@ -72,6 +83,7 @@ bool draw_panel(PanelModel& m) {
   const char* modes[] = {"fluid", "speed", "density error", "pressure", "grid cell"};
   changed |= ImGui::Combo("colour (C)", &m.colour_mode, modes, IM_ARRAYSIZE(modes));
   changed |= ImGui::Checkbox("flat points (V)", &m.flat_points);
+  changed |= surface_controls(m.surface, m.look);
   if (m.wall_particles > 0) {
     const std::string label = "wall particles (G): " + std::to_string(m.wall_particles);
     changed |= ImGui::Checkbox(label.c_str(), &m.show_walls);
@@ -84,7 +96,7 @@ bool draw_panel(PanelModel& m) {
         "arrows tilt gravity   J / L push sideways\n"
         "ctrl + left / right drag: pull / push water\n"
         "left drag orbit   right drag pan   wheel zoom\n"
-        "+ / - substeps   C colour   V points\n"
+        "+ / - substeps   C colour   V points   S surface\n"
         "P screenshot   Esc quit");
   }
   ImGui::End();

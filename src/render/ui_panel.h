@@ -6,6 +6,7 @@
 
 #include "../common/backend.h"
 #include "colour_map.h"
+#include "fluid_surface.h"
 #include "particle_renderer.h"
 
 namespace sph::render {
@@ -21,6 +22,8 @@ struct PanelModel {
   int colour_mode = 0;
   bool paused = false;
   bool flat_points = false;
+  bool surface = false;     // draw the fluid's surface (screen space) instead of spheres
+  SurfaceLook look;         // its smoothing, sphere size, colour and absorption
   bool show_walls = false;  // draw the walls' boundary particles (sph.walls = "particles")
   long wall_particles = 0;  // how many there are
   // statistics
@@ -39,6 +42,9 @@ struct PanelModel {
   std::vector<std::string> setup_report;  // the load-time checks' findings (Setup::report), as sph_run prints them
   bool setup_changed = false;             // some finding removed particles or refit a lattice
 };
+
+// The surface toggle and, when on, its look's sliders (shared by the live demo's panel and the replay's).
+bool surface_controls(bool& surface, SurfaceLook& look);
 
 // Draws the panel; returns true when a parameter was edited.
 bool draw_panel(PanelModel& m);
