@@ -3,7 +3,8 @@
 matplotlib alone: a look at the exported surface without Blender or ParaView.
 
 usage: scripts/plot_surface.py OUT/surface_00002.ply [more meshes side by side] --out picture.png
-Needs Debian's python3-matplotlib and python3-numpy.
+Needs Debian's python3-matplotlib and python3-numpy: run it as scripts/plot_surface.py (its first line names
+/usr/bin/python3), not with another python3 that lacks them.
 """
 import argparse
 import sys
@@ -13,7 +14,11 @@ import numpy as np
 
 def read_mesh(path):
     """Vertices (n x 3 float) and triangles (m x 3 int) of a binary little-endian PLY mesh, and its time."""
-    with open(path, "rb") as f:
+    try:
+        f = open(path, "rb")
+    except OSError as e:
+        sys.exit(f"error: {path}: {e.strerror}")
+    with f:
         header, counts, time = [], {}, None
         while True:
             line = f.readline()
@@ -34,6 +39,8 @@ def read_mesh(path):
         faces = np.frombuffer(f.read(13 * counts["face"]), dtype=np.dtype([("n", "u1"), ("i", "<i4", 3)]))
         if len(vertices) != counts["vertex"] or len(faces) != counts["face"] or np.any(faces["n"] != 3):
             sys.exit(f"error: {path}: the file is shorter than its header says, or has faces that are not triangles")
+    if len(faces) == 0:
+        sys.exit(f"error: {path}: the mesh has no triangles (a frame without fluid)")
     return vertices, faces["i"], time
 
 
@@ -48,7 +55,7 @@ def main():
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     fig = plt.figure(figsize=(5.5 * len(args.meshes), 4.5))
-    light = np.array([0.4, 0.8, 0.45])
+    light = np.array([0.45, 0.8, -0.6])  # from above and the camera's side (+x, -z: azimuth -60 degrees)
     light /= np.linalg.norm(light)
     for k, path in enumerate(args.meshes):
         v, t, time = read_mesh(path)

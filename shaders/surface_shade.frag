@@ -43,8 +43,8 @@ void main() {
   vec3 sky = mix(vec3(0.25, 0.27, 0.30), vec3(0.75, 0.85, 1.0), sky_t);
   float thickness = texture(u_thickness, v_uv).r;
   vec3 transmit = exp(-u_absorption * thickness * (vec3(1.05) - u_colour));
-  vec3 through = mix(u_colour * 0.6, u_background, transmit);
-  float diffuse = 0.3 + 0.7 * max(dot(n, u_light), 0.0);
+  vec3 through = mix(u_colour * 0.9, u_background, transmit);
+  float diffuse = 0.5 + 0.5 * max(dot(n, u_light), 0.0);
   vec3 h = normalize(u_light + v);
   float specular = pow(max(dot(n, h), 0.0), 96.0);
   vec3 colour = mix(through * diffuse + u_colour * 0.15, sky, fresnel) + vec3(0.6 * specular);

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "common/mesh.h"
+#include "common/setup_budget.h"
 #include "physics_helpers.h"
 #include "surface/particle_surface.h"
 
@@ -105,6 +106,6 @@ TEST_CASE("surface: options out of range and sizes beyond the machine are refuse
   // spacing are beyond any machine this runs on.
   bad = o;
   bad.voxels_per_spacing = 8.0;
-  CHECK(sph::surface_memory_estimate(1000000000, bad) > sph::machine_memory_bytes());
+  CHECK(sph::surface_memory_estimate(1000000000, bad) > sph::usable_memory_bytes());
   CHECK(sph::surface_memory_estimate(2000, o) * 8.0 < sph::surface_memory_estimate(2000, bad) * 1.01);
 }

@@ -12,7 +12,9 @@ namespace sph {
 int parse_demo_options(int argc, char** argv, DemoOptions& o) {
   CLI::App app{"sph_demo: watch and play with an SPH fluid in real time (OpenGL window, Dear ImGui panel).\n"
                "Controls: space pause, N step, R reset, [ ] scenes, B back end, arrows tilt gravity, J/L push,\n"
-               "ctrl+drag pull/push the water, mouse orbit/pan/zoom, +/- substeps, C colour, V points, P screenshot.\n"
+               "ctrl+drag pull/push the water, mouse orbit/pan/zoom, +/- substeps, C colour, V points, S surface,\n"
+               "G wall particles, D drop a box, P screenshot.\n"
+               "--replay DIR plays an sph_run recording instead: space play/pause, N/B step, L loop, +/- speed.\n"
                "Exit status: 0 done, 1 bad input, 2 no display or OpenGL, 3 the simulation became unstable."};
   sph::use_error_prefix(app);
   app.add_option("--scene,scene", o.scene, "scene file (JSON)")->capture_default_str();

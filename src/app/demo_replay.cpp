@@ -19,6 +19,7 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include "../common/guided_creation.h"
+#include "../common/setup_budget.h"
 #include "../common/scene.h"
 #include "../render/camera.h"
 #include "../render/fluid_surface.h"
@@ -35,24 +36,17 @@ using namespace render;
 
 namespace {
 
-// Memory one particle of a frame takes in a ParticleState [bytes]: its arrays (particle_state.h), rounded up.
-constexpr double kReplayBytesPerParticle = 128.0;
+// A frame file stores about this many bytes a particle (frame_writer.h's record).
+constexpr double kFrameBytesPerParticle = 60.0;
 
 const Vec3 kBackground{0.11f, 0.12f, 0.14f};  // the clear colour, seen through the surface's water
-
-// A recording's frames are refused when their particles need more than this fraction of the machine's memory.
-constexpr double kReplayMemoryShare = 0.8;
-
-double machine_memory() {
-  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && size > 0 ? double(pages) * double(size) : std::numeric_limits<double>::infinity();
-}
 
 }  // namespace
 
 Recording load_recording(const std::string& folder) {
   std::error_code ec;
-  if (!fs::is_directory(folder, ec)) throw std::runtime_error("--replay " + folder + ": no such folder");
+  if (!fs::is_directory(folder, ec))
+    throw std::runtime_error("--replay " + folder + (fs::exists(folder, ec) ? ": not a folder (give the sph_run output folder)" : ": no such folder"));
   std::vector<std::string> paths;
   std::uintmax_t bytes = 0;
   for (const auto& e : fs::directory_iterator(folder)) {
@@ -65,12 +59,12 @@ Recording load_recording(const std::string& folder) {
   if (paths.empty())
     throw std::runtime_error("--replay " + folder + ": no frame_NNNNN.ply in it (sph_run --frames-every SECONDS writes them)");
   std::sort(paths.begin(), paths.end());
-  // A frame file stores about 60 bytes a particle; in memory each takes kReplayBytesPerParticle.
-  const double need = double(bytes) / 60.0 * kReplayBytesPerParticle, have = machine_memory();
-  if (need > kReplayMemoryShare * have) {
+  // In memory a particle of a frame takes kBytesPerParticle (particle_state.h).
+  const double need = double(bytes) / kFrameBytesPerParticle * double(kBytesPerParticle), have = usable_memory_bytes();
+  if (need > have) {
     char text[256];
-    std::snprintf(text, sizeof text, "--replay %s: its %zu frames need about %.1f GB in memory, more than %.0f%% of this machine's %.1f GB",
-                  folder.c_str(), paths.size(), need / 1e9, 100.0 * kReplayMemoryShare, have / 1e9);
+    std::snprintf(text, sizeof text, "--replay %s: its %zu frames need about %.1f GB in memory, more than the %.1f GB a run may use here (half this machine's memory)",
+                  folder.c_str(), paths.size(), need / 1e9, have / 1e9);
     throw std::runtime_error(text);
   }
   Recording r;
@@ -213,6 +207,9 @@ class Replay {
       const Scene scene = load_scene(scene_file.string(), {});
       const Setup setup = create_setup(scene, 0.0);
       if (setup.constants.num_fluids < fluids) throw std::runtime_error("its fluids are fewer than the frames name");
+      if (std::fabs(setup.spacing - info.spacing) > 1e-9 * info.spacing)
+        std::cerr << "sph_demo: " << scene_file.string() << " has spacing " << setup.spacing << " m, the recording "
+                  << info.spacing << " m (sph_run's --set overrides are not recorded): its container may differ from the run's\n";
       constants_ = setup.constants;
       // The camera frames the container as the live demo does: the grid's domain without its 2h band.
       const GridGeometry& g = constants_.grid;
@@ -224,6 +221,7 @@ class Replay {
       return;
     } catch (const std::exception& e) {
       note_ = "scene " + scene_file.string() + " not used (" + e.what() + "): rest density 1000 kg/m^3 for the colours";
+      std::cerr << "sph_demo: " << note_ << "\n";
     }
     const float d = float(info.spacing);
     constants_ = SimConstants{};
@@ -262,7 +260,8 @@ class Replay {
     ImGui::Begin("replay", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     const Frame& f = rec_.frames[index_];
     ImGui::Text("%s: scene %s", rec_.folder.c_str(), f.info.scene.c_str());
-    ImGui::Text("frame %zu of %zu, t = %.4f s, %zu particles", index_ + 1, rec_.frames.size(), f.info.time, f.particles.size());
+    ImGui::Text("frame index %zu (0 to %zu), t = %.4f s, %zu particles", index_, rec_.frames.size() - 1, f.info.time,
+                f.particles.size());
     if (ImGui::Button(playing_ ? "pause (space)" : "play (space)")) playing_ = !playing_;
     ImGui::SameLine();
     if (ImGui::Button("< (B)")) step(-1);
@@ -271,7 +270,7 @@ class Replay {
     ImGui::SameLine();
     ImGui::Checkbox("loop (L)", &loop_);
     int k = int(index_);
-    if (ImGui::SliderInt("frame", &k, 0, int(rec_.frames.size()) - 1)) {
+    if (ImGui::SliderInt("frame index", &k, 0, int(rec_.frames.size()) - 1)) {
       show(std::size_t(k));
       clock_ = rec_.frames[index_].info.time;
     }
@@ -282,7 +281,7 @@ class Replay {
     ImGui::Combo("colour (C)", &colour_, names, int(ColourMode::Count));
     ImGui::Checkbox("flat points (V)", &flat_);
     surface_controls(surface_, look_);
-    if (legend_.unit && *legend_.unit) ImGui::Text("colour scale: %.3g to %.3g %s", legend_.lo, legend_.hi, legend_.unit);
+    if (!surface_ && legend_.unit && *legend_.unit) ImGui::Text("colour scale: %.3g to %.3g %s", legend_.lo, legend_.hi, legend_.unit);
     ImGui::Text("%.1f fps, drawing %.1f ms", fps_, draw_ms_);
     ImGui::TextWrapped("%s", note_.c_str());
     ImGui::End();

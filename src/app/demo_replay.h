@@ -22,7 +22,7 @@ struct Recording {
 // Reads folder's frames (sorted by name; a progress line on a terminal). Throws SceneError or
 // std::runtime_error naming the folder or file: no such folder, no frame_NNNNN.ply in it, a frame
 // read_ply_frame refuses (corrupt, truncated, missing fields, another format), frames of different scenes or
-// spacings, times that do not increase, or more particles in all than fit in 80% of this machine's memory.
+// spacings, times that do not increase, or more particles in all than fit in the memory a run may use (setup_budget.h).
 Recording load_recording(const std::string& folder);
 
 // Plays the recording in the window (OpenGL 3.3 and Dear ImGui set up by the caller) until it closes, or

@@ -552,6 +552,7 @@ int main(int argc, char** argv) {
   if (const int status = parse_demo_options(argc, argv, o); status >= 0) return status;
   try {
     if (!o.replay.empty()) {  // a recording that cannot be played is refused before any window opens
+      if (!o.sets.empty()) std::cerr << "sph_demo: --set is ignored with --replay (the frames are what was simulated)\n";
       const Recording recording = load_recording(o.replay);
       return run(o, &recording);
     }

@@ -317,6 +317,7 @@ int run(const Options& o) {
     }
     ++frame;
   };
+  int surfaces_written = 0;
   int surface = 0;  // surface_NNNNN.ply holds the surface at time NNNNN x --surface-every (so a restart numbers on)
   auto write_surface_mesh = [&] {
     const ParticleState& ps = sim.particles();
@@ -327,6 +328,7 @@ int run(const Options& o) {
       throw OutputError(e.what());
     }
     ++surface;
+    ++surfaces_written;
   };
 
   // From here on a signal stops the run after the current step; during the set-up above it ends the
@@ -421,7 +423,8 @@ int run(const Options& o) {
   if (worst.most_outside > 0)
     std::cerr << "warning: " << worst.most_outside << " particles left the domain (the container or \"domain\" with a band of 2 h); "
               << "they are still simulated, but the domain does not enclose the fluid: check the boundaries\n";
-  std::cout << "metrics: " << csv.path() << (frame > first_frame ? ", frames: " + std::to_string(frame - first_frame) : std::string()) << "\n";
+  std::cout << "metrics: " << csv.path() << (frame > first_frame ? ", frames: " + std::to_string(frame - first_frame) : std::string())
+            << (surfaces_written > 0 ? ", surface meshes: " + std::to_string(surfaces_written) : std::string()) << "\n";
   std::cout.flush();
 
   if (status == kOutputFailed) {
@@ -454,6 +457,8 @@ void check_numbers(const CLI::App& app, Options& o, const std::string& time, con
     o.surface_every = finite_option("--surface-every", surface_every, 0.0, kMaxTime, false, "seconds");
   if (app.count("--surface-resolution"))
     o.surface_resolution = finite_option("--surface-resolution", surface_resolution, 1.0, 8.0, false, "voxels per spacing");
+  if (app.count("--surface-resolution") && !(o.surface_every > 0.0))
+    throw OptionError("--surface-resolution: goes with --surface-every SECONDS (> 0), which writes the meshes");
   if (o.surface_every > 0.0 && !surfaces_built_in())
     throw OptionError("--surface-every: this sph_run was built without surface meshes (-DSPH_WITH_OPENVDB=OFF); "
                       "rebuild with libopenvdb-dev installed");
@@ -500,9 +505,10 @@ int main(int argc, char** argv) {
                  "--set fluids.0.viscosity=0.01 --set resolution.particles_across=40 --set integrator=leapfrog");
   app.add_option("--surface-every", surface_every,
                  "write the fluid's surface as a closed triangle mesh OUT/surface_NNNNN.ply (binary PLY, OpenVDB; for\n"
-                 "Blender and ParaView) every this many simulated seconds, in [0, 1e7] (0: none, the default)");
+                 "Blender and ParaView) every this many simulated seconds, in [0, 1e7] (0: none, the default);\n"
+                 "NNNNN counts these intervals (t = NNNNN x SECONDS), not the frames");
   app.add_option("--surface-resolution", surface_resolution,
-                 "voxels per particle spacing of the surface meshes, in [1, 8] (default 2)");
+                 "voxels per particle spacing of the surface meshes, a number in [1, 8] (default 2)");
   app.add_flag("--quiet,-q", o.quiet, "no progress line");
   app.add_option("--restart", o.restart,
                  "continue the run from a frame OUT/frame_NNNNN.ply of this scene: the state, time, step and jets\n"

@@ -14,10 +14,6 @@
 
 namespace sph {
 
-namespace {
-
-// Memory a run may fill: half of this machine's memory, or less where the process has an address-space
-// limit (ulimit -v; 80% of it, the rest holds the program, its libraries and thread stacks).
 double usable_memory_bytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   double bytes = 0.5 * (pages > 0 && page > 0 ? double(pages) * double(page) : 8.0 * double(1L << 30));
@@ -26,6 +22,8 @@ double usable_memory_bytes() {
     bytes = std::min(bytes, 0.8 * double(limit.rlim_cur));
   return bytes;
 }
+
+namespace {
 
 std::string number_text(double x) {
   char buf[32];

@@ -10,6 +10,11 @@
 
 namespace sph {
 
+// Memory [bytes] a run may fill: half of this machine's memory, or less where the process has an
+// address-space limit (ulimit -v; 80% of it, the rest holds the program, its libraries and thread stacks).
+// Also the bound of sph_surface's meshes and sph_demo --replay's recordings.
+double usable_memory_bytes();
+
 // A count for a message: "16000", "1.25e+11", or "more than 1e18" (never an overflowed integer).
 std::string count_text(double n);
 

@@ -1,8 +1,6 @@
 // OpenVDB's particle rasteriser, level-set filter and mesher put together (particle_surface.h says what and why).
 #include "particle_surface.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -15,6 +13,8 @@
 #include <openvdb/tools/LevelSetFilter.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/VolumeToMesh.h>
+
+#include "../common/setup_budget.h"
 
 namespace sph {
 namespace {
@@ -135,21 +135,16 @@ double surface_memory_estimate(std::size_t particles, const SurfaceOptions& o) {
   return double(particles) * shell * 8.0 * 3.0;
 }
 
-double machine_memory_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && size > 0 ? double(pages) * double(size) : 0.0;
-}
-
 TriangleMesh particle_surface(const std::vector<Vec3>& positions, const SurfaceOptions& o) {
   check_surface_options(o);
   TriangleMesh mesh;
   if (positions.empty()) return mesh;
-  const double need = surface_memory_estimate(positions.size(), o), have = machine_memory_bytes();
-  if (have > 0.0 && need > 0.8 * have) {
+  const double need = surface_memory_estimate(positions.size(), o), have = usable_memory_bytes();
+  if (need > have) {
     std::ostringstream os;
     os << "surface: " << positions.size() << " particles at " << o.voxels_per_spacing
-       << " voxels per spacing need up to " << need / 1e9 << " GB, more than 80% of this machine's " << have / 1e9
-       << " GB; lower the resolution";
+       << " voxels per spacing need up to " << need / 1e9 << " GB (estimate), more than the " << have / 1e9
+       << " GB a run may use here (half this machine's memory); lower the resolution";
     throw std::runtime_error(os.str());
   }
   openvdb::initialize();

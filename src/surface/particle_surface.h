@@ -32,14 +32,11 @@ void check_surface_options(const SurfaceOptions& o);
 // resolution the machine cannot hold.
 double surface_memory_estimate(std::size_t particles, const SurfaceOptions& o);
 
-// The physical memory of this machine [bytes] (0 when unknown).
-double machine_memory_bytes();
-
 // The closed, outward-oriented (counter-clockwise seen from outside) triangle mesh of the fluid the particles
 // at `positions` [m] fill. The erosion puts a lattice's flat face at half a spacing beyond its outer particles
 // (each particle stands for d^3, as the emitters fill), calibrated on a lattice slab. Empty for no
 // particles. Throws std::invalid_argument for bad options, std::runtime_error when the estimate of
-// surface_memory_estimate exceeds the machine's memory (naming both).
+// surface_memory_estimate exceeds the memory a run may use (setup_budget.h, usable_memory_bytes; naming both).
 TriangleMesh particle_surface(const std::vector<Vec3>& positions, const SurfaceOptions& o);
 
 // Surface area [m^2] and enclosed volume [m^3] of a closed mesh (the divergence theorem).
