@@ -492,6 +492,23 @@ if(SPH_WITH_OPENVDB)
     --exit 1 --clean ${SPH_CLI_OUT}/surface_tool_corrupt --stderr "frame_00000.ply"
     --setup "mkdir -p ${SPH_CLI_OUT}/surface_tool_corrupt && printf 'ply\\nformat ascii 1.0\\nend_header\\n' > ${SPH_CLI_OUT}/surface_tool_corrupt/frame_00000.ply"
     -- ${SPH_SURFACE} ${SPH_CLI_OUT}/surface_tool_corrupt)
+  # A mesh that exists (here the run's own, numbered by time) is refused without --force, and kept.
+  sph_cli_test(surface_tool_exists
+    --exit 1 --clean ${SPH_CLI_OUT}/surface_tool_exists --stderr "surface_00000.ply exists" --stderr "--force"
+    --setup "${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json -n 1 --frames-every 1 --surface-every 1 -q --out ${SPH_CLI_OUT}/surface_tool_exists"
+    -- ${SPH_SURFACE} ${SPH_CLI_OUT}/surface_tool_exists)
+  sph_cli_test(surface_tool_force
+    --exit 0 --clean ${SPH_CLI_OUT}/surface_tool_force --stdout "[1/1]"
+    --setup "${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json -n 1 --frames-every 1 --surface-every 1 -q --out ${SPH_CLI_OUT}/surface_tool_force"
+    -- ${SPH_SURFACE} ${SPH_CLI_OUT}/surface_tool_force --force)
+  # An output folder that cannot be made: exit 4, naming it.
+  sph_cli_test(surface_tool_unwritable
+    --exit 4 --stderr "cannot create the output folder" --stderr "/dev/null/meshes"
+    --setup "${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json -n 1 --frames-every 1 -q --out ${SPH_CLI_OUT}/surface_tool_unwritable"
+    -- ${SPH_SURFACE} ${SPH_CLI_OUT}/surface_tool_unwritable --out /dev/null/meshes)
+  sph_cli_test(surface_resolution_alone
+    --exit 1 --stderr "--surface-resolution" --stderr "--surface-every"
+    -- ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json --surface-resolution 3 --out ${SPH_CLI_OUT}/surface_resolution_alone)
   sph_cli_test(surface_tool_resolution
     --exit 1 --stderr "--resolution" --stderr "[1, 8]"
     -- ${SPH_SURFACE} ${SPH_CLI_DATA} --resolution 0)
