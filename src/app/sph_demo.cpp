@@ -27,6 +27,7 @@
 #include "../render/ui_panel.h"
 #include "backends.h"
 #include "demo_options.h"
+#include "demo_window.h"
 #include "demo_replay.h"
 #include "demo_scenes.h"
 
@@ -446,51 +447,11 @@ void on_scroll(GLFWwindow* w, double, double dy) {
   if (ImGui::GetIO().WantCaptureMouse) return;
   static_cast<Demo*>(glfwGetWindowUserPointer(w))->scroll(dy);
 }
-void on_glfw_error(int code, const char* text) { std::cerr << "GLFW error " << code << ": " << text << "\n"; }
 
 // The window, OpenGL and Dear ImGui, then the live demo, or the replay of `recording` when there is one.
 int run(const DemoOptions& o, const Recording* recording) {
-  glfwSetErrorCallback(on_glfw_error);
-  const char* display = std::getenv("DISPLAY");
-  if (!glfwInit() || !display || !*display) {
-    std::cerr << "error: no display: sph_demo opens a window and needs an X server (DISPLAY is "
-              << (display && *display ? display : "unset") << ").\n"
-              << "For a picture without a screen run it under Xvfb, for example\n"
-              << "  xvfb-run -a -s '-screen 0 1280x720x24' build/sph_demo --frames 120 --screenshot out/demo.png\n"
-              << "or simulate without drawing with build/sph_run.\n";
-    return 2;
-  }
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GL_TRUE);
-  glfwWindowHint(GLFW_SAMPLES, 4);
-  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "sph_demo", nullptr, nullptr);
-  if (!window) {
-    std::cerr << "error: cannot create an OpenGL 3.3 core window on this display\n";
-    glfwTerminate();
-    return 2;
-  }
-  glfwMakeContextCurrent(window);
-  glfwSwapInterval(o.frames > 0 ? 0 : 1);
-  glewExperimental = GL_TRUE;
-  if (glewInit() != GLEW_OK) {
-    std::cerr << "error: GLEW could not load OpenGL functions\n";
-    return 2;
-  }
-  while (glGetError() != GL_NO_ERROR) {
-  }  // glewInit leaves a harmless GL_INVALID_ENUM on core profiles
-  std::cout << "OpenGL " << glGetString(GL_VERSION) << " on " << glGetString(GL_RENDERER) << "\n";
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_PROGRAM_POINT_SIZE);
-
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  ImGui::GetIO().IniFilename = nullptr;
-  ImGui::StyleColorsDark();
-  ImGui_ImplGlfw_InitForOpenGL(window, true);
-  ImGui_ImplOpenGL3_Init("#version 330 core");
-
+  GLFWwindow* window = open_demo_window(o);
+  if (!window) return 2;
   int status = 0;
   try {
     if (recording) {
@@ -537,11 +498,7 @@ int run(const DemoOptions& o, const Recording* recording) {
     std::cerr << "\nerror: " << e.what() << "\n";
     status = 1;
   }
-  ImGui_ImplOpenGL3_Shutdown();
-  ImGui_ImplGlfw_Shutdown();
-  ImGui::DestroyContext();
-  glfwDestroyWindow(window);
-  glfwTerminate();
+  close_demo_window(window);
   return status;
 }
 

@@ -1,0 +1,19 @@
+// sph_demo's window: GLFW with an OpenGL 3.3 core context, GLEW, and Dear ImGui on it; shared by the live
+// demo and the replay.
+#pragma once
+
+#include <GLFW/glfw3.h>
+
+#include "demo_options.h"
+
+namespace sph {
+
+// Opens the window (o.width x o.height; no vsync for headless --frames runs) and sets up OpenGL (depth test,
+// program point size) and Dear ImGui. Returns nullptr, with the reason and what to do on stderr, when there
+// is no display, no OpenGL 3.3 core context or GLEW cannot load it (the caller exits 2).
+GLFWwindow* open_demo_window(const DemoOptions& o);
+
+// Shuts Dear ImGui down and closes the window and GLFW.
+void close_demo_window(GLFWwindow* window);
+
+}  // namespace sph
