@@ -27,6 +27,7 @@
 #include "../render/scene_lines.h"
 #include "../render/screenshot.h"
 #include "../render/ui_panel.h"
+#include "demo_window.h"
 
 namespace fs = std::filesystem;
 
@@ -309,15 +310,6 @@ class Replay {
   long frames_ = 0;
 };
 
-// The GLFW key of a --keys character (as the live demo's).
-int replay_key_code(char c) {
-  switch (c) {
-    case '+': return GLFW_KEY_EQUAL;
-    case '-': return GLFW_KEY_MINUS;
-    default: return int(c);
-  }
-}
-
 void on_replay_key(GLFWwindow* w, int key, int, int action, int) {
   if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
   static_cast<Replay*>(glfwGetWindowUserPointer(w))->key(key);
@@ -340,7 +332,7 @@ int run_replay(GLFWwindow* window, const DemoOptions& o, const Recording& record
   while (!glfwWindowShouldClose(window)) {
     if (replay.idle()) glfwWaitEventsTimeout(0.1);
     else glfwPollEvents();
-    if (std::size_t(replay.frames()) < o.keys.size()) replay.key(replay_key_code(o.keys[std::size_t(replay.frames())]));
+    if (std::size_t(replay.frames()) < o.keys.size()) replay.key(glfw_key_of(o.keys[std::size_t(replay.frames())]));
     replay.mouse();
     const auto now = std::chrono::steady_clock::now();
     const double wall = std::chrono::duration<double>(now - last).count();

@@ -64,6 +64,16 @@ GLFWwindow* open_demo_window(const DemoOptions& o) {
   return window;
 }
 
+int glfw_key_of(char c) {
+  switch (c) {
+    case '[': return GLFW_KEY_LEFT_BRACKET;
+    case ']': return GLFW_KEY_RIGHT_BRACKET;
+    case '+': return GLFW_KEY_EQUAL;
+    case '-': return GLFW_KEY_MINUS;
+    default: return int(c);  // GLFW_KEY_SPACE and GLFW_KEY_A..Z are the ASCII codes
+  }
+}
+
 void close_demo_window(GLFWwindow* window) {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

@@ -13,6 +13,9 @@ namespace sph {
 // is no display, no OpenGL 3.3 core context or GLEW cannot load it (the caller exits 2).
 GLFWwindow* open_demo_window(const DemoOptions& o);
 
+// The GLFW key of a --keys character (upper-case letters, space, brackets, + and -).
+int glfw_key_of(char c);
+
 // Shuts Dear ImGui down and closes the window and GLFW.
 void close_demo_window(GLFWwindow* window);
 

@@ -428,17 +428,6 @@ class Demo {
   long frames_ = 0;
 };
 
-// The GLFW key of a --keys character (upper-case letters, space, brackets, + and -).
-int key_code(char c) {
-  switch (c) {
-    case '[': return GLFW_KEY_LEFT_BRACKET;
-    case ']': return GLFW_KEY_RIGHT_BRACKET;
-    case '+': return GLFW_KEY_EQUAL;
-    case '-': return GLFW_KEY_MINUS;
-    default: return int(c);  // GLFW_KEY_SPACE and GLFW_KEY_A..Z are the ASCII codes
-  }
-}
-
 void on_key(GLFWwindow* w, int key, int, int action, int mods) {
   if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
   static_cast<Demo*>(glfwGetWindowUserPointer(w))->key(key, mods);
@@ -467,7 +456,7 @@ int run(const DemoOptions& o, const Recording* recording) {
       // Paused, the demo sleeps until an input event (or 0.1 s) instead of redrawing as fast as it can.
       if (demo.idle()) glfwWaitEventsTimeout(0.1);
       else glfwPollEvents();
-      if (std::size_t(demo.frames()) < o.keys.size()) demo.key(key_code(o.keys[std::size_t(demo.frames())]), 0);
+      if (std::size_t(demo.frames()) < o.keys.size()) demo.key(glfw_key_of(o.keys[std::size_t(demo.frames())]), 0);
       demo.frame();
       if (o.frames > 0 && demo.frames() >= o.frames) {
         if (!o.screenshot.empty()) demo.write_screenshot_now(o.screenshot);
