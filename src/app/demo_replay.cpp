@@ -40,8 +40,6 @@ namespace {
 // A frame file stores about this many bytes a particle (frame_writer.h's record).
 constexpr double kFrameBytesPerParticle = 60.0;
 
-const Vec3 kBackground{0.11f, 0.12f, 0.14f};  // the clear colour, seen through the surface's water
-
 }  // namespace
 
 Recording load_recording(const std::string& folder) {
@@ -125,16 +123,12 @@ class Replay {
     }
     if (colour_ != shown_colour_) show(index_, true);
     const auto d0 = std::chrono::steady_clock::now();
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
-    glViewport(0, 0, w, h);
-    glClearColor(kBackground.x, kBackground.y, kBackground.z, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    const Mat4 view = camera_.view(), proj = camera_.projection(float(w) / float(std::max(h, 1)));
-    lines_.draw(view, proj);
+    const FrameView f = begin_frame(window_, camera_);
+    lines_.draw(f.view, f.projection);
     if (surface_)
-      surface_renderer_.draw(particles_, view, proj, radius_, camera_.distance, lo_, hi_, w, h, look_, kBackground);
-    else particles_.draw(view, proj, radius_, h, flat_);
+      surface_renderer_.draw(particles_, f.view, f.projection, radius_, camera_.distance, lo_, hi_, f.width, f.height, look_,
+                             f.background());
+    else particles_.draw(f.view, f.projection, radius_, f.height, flat_);
     panel();
     glFinish();  // so that the drawing time is the renderer's, not only the commands' submission
     draw_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d0).count();

@@ -64,6 +64,17 @@ GLFWwindow* open_demo_window(const DemoOptions& o) {
   return window;
 }
 
+FrameView begin_frame(GLFWwindow* window, const render::OrbitCamera& camera) {
+  FrameView f;
+  glfwGetFramebufferSize(window, &f.width, &f.height);
+  glViewport(0, 0, f.width, f.height);
+  glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  f.view = camera.view();
+  f.projection = camera.projection(float(f.width) / float(f.height > 1 ? f.height : 1));
+  return f;
+}
+
 int glfw_key_of(char c) {
   switch (c) {
     case '[': return GLFW_KEY_LEFT_BRACKET;

@@ -37,7 +37,6 @@ using namespace sph::render;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-const Vec3 kBackground{0.11f, 0.12f, 0.14f};  // the clear colour, also what the surface shows through the water
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 class Demo {
@@ -158,21 +157,17 @@ class Demo {
     if (!interop || frames_ % 30 == 0) stats_ = sim_->particles();  // with interop: statistics now and then
     if (!interop) panel_.legend = particles_.upload(stats_, sim_->setup().constants, ColourMode(panel_.colour_mode));
     const ParticleState& ps = stats_;
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
-    glViewport(0, 0, w, h);
-    glClearColor(kBackground.x, kBackground.y, kBackground.z, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    const Mat4 view = camera_.view(), proj = camera_.projection(float(w) / float(std::max(h, 1)));
+    const FrameView f = begin_frame(window_, camera_);
     if (!sim_->backend().bodies().empty()) lines_.set_bodies(sim_->backend().bodies());
-    lines_.draw(view, proj);
+    lines_.draw(f.view, f.projection);
     if (panel_.show_walls && panel_.wall_particles > 0) {
       upload_walls();
-      walls_.draw(view, proj, radius_, h, panel_.flat_points);
+      walls_.draw(f.view, f.projection, radius_, f.height, panel_.flat_points);
     }
     if (panel_.surface)
-      surface_.draw(particles_, view, proj, radius_, camera_.distance, lo_, hi_, w, h, panel_.look, kBackground);
-    else particles_.draw(view, proj, radius_, h, panel_.flat_points);
+      surface_.draw(particles_, f.view, f.projection, radius_, camera_.distance, lo_, hi_, f.width, f.height, panel_.look,
+                    f.background());
+    else particles_.draw(f.view, f.projection, radius_, f.height, panel_.flat_points);
     draw_ui(ps);
     glFinish();  // the drawing time is the renderer's, not only the commands' submission
     panel_.draw_ms = ms_since(d0);
