@@ -154,3 +154,21 @@ set_tests_properties(cli_demo_replay_plays cli_demo_replay_pause_and_step cli_de
                      cli_demo_replay_corrupt cli_demo_replay_mixed_runs PROPERTIES RESOURCE_LOCK replay_recording)
 unset(_record)
 unset(_rec)
+
+# --- sph_demo --replay with the recording's surface meshes (OpenVDB builds write them) ----------------
+if(SPH_WITH_OPENVDB)
+  set(_rec ${SPH_CLI_OUT}/replay_meshes)
+  set(_record "rm -rf ${_rec} && ${SPH_RUN} ${SPH_CLI_SCENES}/hydrostatic_tank.json -b cpu -t 0.1 --frames-every 0.05 --surface-every 0.05 -q --out ${_rec}")
+  # Paused on frame 1 (t = 0.05 s), M's mesh is the one of that time.
+  sph_demo_xvfb_test(demo_replay_meshes
+    --exit 0 --setup "${_record}" --stdout "surface_00001.ply" --stdout-prefix "mesh_triangles: "
+    -- ${SPH_XVFB} ${SPH_DEMO} --replay ${_rec} --keys " NM" --frames 4)
+  sph_cli_test(demo_replay_corrupt_mesh --exit 1 --stderr "surface_00001.ply"
+    --setup "${_record} && head -c 400 ${_rec}/surface_00001.ply > ${SPH_CLI_OUT}/cut_mesh.ply && mv ${SPH_CLI_OUT}/cut_mesh.ply ${_rec}/surface_00001.ply"
+    -- ${SPH_DEMO} --replay ${_rec})
+  set_tests_properties(cli_demo_replay_meshes cli_demo_replay_corrupt_mesh PROPERTIES RESOURCE_LOCK replay_meshes)
+  unset(_record)
+  unset(_rec)
+endif()
+sph_cli_test(demo_render_mesh_without_replay --exit 1 --stderr "--render mesh" --stderr "--replay"
+  -- ${SPH_DEMO} --render mesh)

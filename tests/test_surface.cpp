@@ -1,12 +1,16 @@
 // Fluid surface meshes from particles (issue 14, src/surface/): closed, the fluid's volume, a sphere's area,
 // and the options and sizes that are refused.
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "common/mesh.h"
+#include "common/mesh_ply.h"
 #include "common/setup_budget.h"
 #include "physics_helpers.h"
 #include "surface/particle_surface.h"
@@ -108,4 +112,32 @@ TEST_CASE("surface: options out of range and sizes beyond the machine are refuse
   bad.voxels_per_spacing = 8.0;
   CHECK(sph::surface_memory_estimate(1000000000, bad) > sph::usable_memory_bytes());
   CHECK(sph::surface_memory_estimate(2000, o) * 8.0 < sph::surface_memory_estimate(2000, bad) * 1.01);
+}
+
+TEST_CASE("surface: a mesh written as PLY reads back, and a damaged file is refused by name", "[surface]") {
+  sph::SurfaceOptions o;
+  o.spacing = 0.01;
+  const sph::TriangleMesh mesh = sph::particle_surface({{0.0f, 0.0f, 0.0f}, {0.01f, 0.0f, 0.0f}}, o);
+  const std::string path = std::string(SPH_BINARY_DIR) + "/surface_roundtrip.ply";
+  sph::write_ply_mesh(path, mesh, 0.125);
+  double time = 0.0;
+  const sph::TriangleMesh back = sph::read_ply_mesh(path, time);
+  CHECK(time == 0.125);
+  REQUIRE(back.triangles == mesh.triangles);
+  REQUIRE(back.vertices.size() == mesh.vertices.size());
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+    for (int k = 0; k < 3; ++k) CHECK(back.vertices[i][k] == double(float(mesh.vertices[i][k])));
+  // Cut short: the size check names the file.
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() - 5);
+  }
+  try {
+    sph::read_ply_mesh(path, time);
+    FAIL("a truncated mesh was read");
+  } catch (const std::runtime_error& e) {
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("surface_roundtrip.ply") != std::string::npos);
+  }
 }

@@ -14,25 +14,28 @@ int parse_demo_options(int argc, char** argv, DemoOptions& o) {
                "Controls: space pause, N step, R reset, [ ] scenes, B back end, arrows tilt gravity, J/L push,\n"
                "ctrl+drag pull/push the water, mouse orbit/pan/zoom, +/- substeps, C colour, V points, S surface,\n"
                "G wall particles, D drop a box, P screenshot.\n"
-               "--replay DIR plays an sph_run recording instead: space play/pause, N/B step, L loop, +/- speed.\n"
+               "--replay DIR plays an sph_run recording instead: space play/pause, N/B step, L loop, +/- speed,\n"
+               "M its surface meshes.\n"
                "Exit status: 0 done, 1 bad input, 2 no display or OpenGL, 3 the simulation became unstable."};
   sph::use_error_prefix(app);
   app.add_option("--scene,scene", o.scene, "scene file (JSON)")->capture_default_str();
   app.add_option("--backend,-b", o.backend, "back end: cpu, host or cuda")->capture_default_str();
   app.add_option("--frames", o.frames, "render this many frames without input, then exit (headless runs)");
   app.add_option("--screenshot", o.screenshot, "with --frames: write the last frame to this PNG");
-  app.add_option("--keys", o.keys, "press these keys, one per frame from the first (space N R [ ] B C V G D S L + -)")
+  app.add_option("--keys", o.keys, "press these keys, one per frame from the first (space N R [ ] B C V G D S L M + -)")
       ->check([](const std::string& k) {
-        return k.find_first_not_of(" NRBCVGDSL[]+-") == std::string::npos ? std::string()
-                                                                             : "allowed keys: space N R [ ] B C V G D S L + -";
+        return k.find_first_not_of(" NRBCVGDSLM[]+-") == std::string::npos ? std::string()
+                                                                              : "allowed keys: space N R [ ] B C V G D S L M + -";
       });
   app.add_option("--width", o.width, "window width")->capture_default_str()->check(CLI::Range(64, 8192));
   app.add_option("--height", o.height, "window height")->capture_default_str()->check(CLI::Range(64, 8192));
   app.add_option("--substeps", o.substeps, "simulation steps per frame (default: about 1/60 s per frame)");
   app.add_option("--colour", o.colour, "fluid, speed, density_error, pressure or cell")
       ->capture_default_str()->check(CLI::IsMember({"fluid", "speed", "density_error", "pressure", "cell"}));
-  app.add_option("--render", o.render, "spheres, or surface: the screen-space fluid surface (S toggles)")
-      ->capture_default_str()->check(CLI::IsMember({"spheres", "surface"}));
+  app.add_option("--render", o.render,
+                 "spheres; surface: the screen-space fluid surface (S toggles); mesh (with --replay): the recording's\n"
+                 "exported surface meshes (M toggles)")
+      ->capture_default_str()->check(CLI::IsMember({"spheres", "surface", "mesh"}));
   app.add_option("--budget-ms", o.budget_ms, "simulation time budget per frame, milliseconds")->capture_default_str();
   app.add_option("--set,-s", o.sets, "override a scene value, key=value (as sph_run)");
   app.add_option("--replay", o.replay,

@@ -19,10 +19,12 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include "../common/guided_creation.h"
+#include "../common/mesh_ply.h"
 #include "../common/setup_budget.h"
 #include "../common/scene.h"
 #include "../render/camera.h"
 #include "../render/fluid_surface.h"
+#include "../render/mesh_renderer.h"
 #include "../render/particle_renderer.h"
 #include "../render/scene_lines.h"
 #include "../render/screenshot.h"
@@ -85,6 +87,19 @@ Recording load_recording(const std::string& folder) {
     if (tty) std::fprintf(stderr, "\rreading %s: frame %zu of %zu   ", folder.c_str(), k + 1, paths.size());
   }
   if (tty) std::fprintf(stderr, "\n");
+  std::vector<std::string> meshes;
+  for (const auto& e : fs::directory_iterator(folder)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("surface_", 0) == 0 && e.path().extension() == ".ply") meshes.push_back(e.path().string());
+  }
+  for (const std::string& path : meshes) {
+    Recording::Surface s;
+    s.path = path;
+    s.mesh = read_ply_mesh(path, s.time);
+    if (!std::isfinite(s.time)) throw std::runtime_error(path + ": the mesh records no time (comment time T)");
+    r.surfaces.push_back(std::move(s));
+  }
+  std::sort(r.surfaces.begin(), r.surfaces.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
   return r;
 }
 
@@ -104,6 +119,10 @@ class Replay {
     surface_ = o.render == "surface";
     clock_ = rec_.frames.front().info.time;
     show(0);
+    mesh_ = o.render == "mesh" && !rec_.surfaces.empty();
+    if (o.render == "mesh" && rec_.surfaces.empty())
+      std::cerr << "sph_demo: " << rec_.folder << " has no surface_NNNNN.ply meshes (sph_run --surface-every, sph_surface); "
+                   "drawing spheres\n";
   }
 
   // One drawn frame: the playback clock moves by `advance` seconds times the speed (looping or stopping at
@@ -122,10 +141,12 @@ class Replay {
       show(k);
     }
     if (colour_ != shown_colour_) show(index_, true);
+    if (mesh_) show_mesh();
     const auto d0 = std::chrono::steady_clock::now();
     const FrameView f = begin_frame(window_, camera_);
     lines_.draw(f.view, f.projection);
-    if (surface_)
+    if (mesh_) meshes_.draw(f.view, f.projection, look_.colour);
+    else if (surface_)
       surface_renderer_.draw(particles_, f.view, f.projection, radius_, camera_.distance, lo_, hi_, f.width, f.height, look_,
                              f.background());
     else particles_.draw(f.view, f.projection, radius_, f.height, flat_);
@@ -138,7 +159,7 @@ class Replay {
   }
 
   // Space: play or pause; N, B: the next or previous frame (pausing); L: loop; C: colour; V: flat points;
-  // S: surface; + and -: twice or half the speed; Escape: quit.
+  // S: surface; M: the exported meshes; + and -: twice or half the speed; Escape: quit.
   void key(int k) {
     switch (k) {
       case GLFW_KEY_SPACE: playing_ = !playing_; break;
@@ -148,6 +169,7 @@ class Replay {
       case GLFW_KEY_C: colour_ = (colour_ + 1) % int(ColourMode::Count); break;
       case GLFW_KEY_V: flat_ = !flat_; break;
       case GLFW_KEY_S: surface_ = !surface_; break;
+      case GLFW_KEY_M: mesh_ = !mesh_ && !rec_.surfaces.empty(); break;
       case GLFW_KEY_EQUAL:
       case GLFW_KEY_KP_ADD: speed_ = std::min(64.0, speed_ * 2.0); break;
       case GLFW_KEY_MINUS:
@@ -179,6 +201,7 @@ class Replay {
               << "\nrecorded_frames: " << rec_.frames.size() << "\nshown_frame: " << index_
               << "\nparticles: " << rec_.frames[index_].particles.size() << "\nreplay_time: " << clock_
               << "\nfps: " << fps_ << "\ndraw_ms_per_frame: " << draw_ms_ << "\n";
+    if (mesh_) std::cout << "mesh: " << rec_.surfaces[shown_mesh_].path << "\nmesh_triangles: " << meshes_.triangles() << "\n";
   }
 
  private:
@@ -240,6 +263,15 @@ class Replay {
     legend_ = particles_.upload(rec_.frames[k].particles, constants_, ColourMode(colour_));
     shown_colour_ = colour_;
   }
+  // The latest mesh at or before the shown frame's time (the first one before any).
+  void show_mesh() {
+    const double t = rec_.frames[index_].info.time + 1e-9;
+    std::size_t k = 0;
+    while (k + 1 < rec_.surfaces.size() && rec_.surfaces[k + 1].time <= t) ++k;
+    if (k == shown_mesh_ && meshes_.triangles() > 0) return;
+    shown_mesh_ = k;
+    meshes_.upload(rec_.surfaces[k].mesh);
+  }
   void step(int direction) {
     playing_ = false;
     const long k = std::clamp(long(index_) + direction, 0L, long(rec_.frames.size()) - 1);
@@ -276,6 +308,10 @@ class Replay {
     ImGui::Combo("colour (C)", &colour_, names, int(ColourMode::Count));
     ImGui::Checkbox("flat points (V)", &flat_);
     surface_controls(surface_, look_);
+    if (!rec_.surfaces.empty()) {
+      ImGui::Checkbox("exported meshes (M)", &mesh_);
+      if (mesh_) ImGui::Text("%s, t = %.4f s", rec_.surfaces[shown_mesh_].path.c_str(), rec_.surfaces[shown_mesh_].time);
+    }
     if (!surface_ && legend_.unit && *legend_.unit) ImGui::Text("colour scale: %.3g to %.3g %s", legend_.lo, legend_.hi, legend_.unit);
     ImGui::Text("%.1f fps, drawing %.1f ms", fps_, draw_ms_);
     ImGui::TextWrapped("%s", note_.c_str());
@@ -290,6 +326,8 @@ class Replay {
   SimConstants constants_{};
   ParticleRenderer particles_;
   FluidSurfaceRenderer surface_renderer_;
+  MeshRenderer meshes_;
+  std::size_t shown_mesh_ = 0;
   SurfaceLook look_;
   SceneLines lines_;
   OrbitCamera camera_;
@@ -300,7 +338,7 @@ class Replay {
   double clock_ = 0.0, speed_ = 1.0, fps_ = 0.0, draw_ms_ = 0.0, last_x_ = 0.0, last_y_ = 0.0;
   int colour_ = int(ColourMode::Speed), shown_colour_ = -1;
   float radius_ = 0.01f;
-  bool playing_ = true, loop_ = true, flat_ = false, surface_ = false;
+  bool playing_ = true, loop_ = true, flat_ = false, surface_ = false, mesh_ = false;
   long frames_ = 0;
 };
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../common/frame_reader.h"
+#include "../common/mesh.h"
 #include "demo_options.h"
 
 namespace sph {
@@ -17,12 +18,20 @@ namespace sph {
 struct Recording {
   std::string folder;
   std::vector<Frame> frames;  // in the order of their simulated times
+  // The folder's surface_NNNNN.ply meshes (sph_run --surface-every, sph_surface), in time order: drawn with M.
+  struct Surface {
+    double time = 0.0;  // [s], from the mesh's header
+    std::string path;
+    TriangleMesh mesh;
+  };
+  std::vector<Surface> surfaces;
 };
 
-// Reads folder's frames (sorted by name; a progress line on a terminal). Throws SceneError or
-// std::runtime_error naming the folder or file: no such folder, no frame_NNNNN.ply in it, a frame
+// Reads folder's frames (sorted by name; a progress line on a terminal) and its surface meshes. Throws
+// SceneError or std::runtime_error naming the folder or file: no such folder, no frame_NNNNN.ply in it, a frame
 // read_ply_frame refuses (corrupt, truncated, missing fields, another format), frames of different scenes or
-// spacings, times that do not increase, or more particles in all than fit in the memory a run may use (setup_budget.h).
+// spacings, times that do not increase, more particles in all than fit in the memory a run may use
+// (setup_budget.h), or a surface mesh read_ply_mesh refuses or that records no time.
 Recording load_recording(const std::string& folder);
 
 // Plays the recording in the window (OpenGL 3.3 and Dear ImGui set up by the caller) until it closes, or

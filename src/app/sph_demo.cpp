@@ -492,6 +492,10 @@ int main(int argc, char** argv) {
   DemoOptions o;
   if (const int status = parse_demo_options(argc, argv, o); status >= 0) return status;
   try {
+    if (o.render == "mesh" && o.replay.empty()) {
+      std::cerr << "error: --render mesh draws a recording's surface meshes: it goes with --replay DIR\n";
+      return 1;
+    }
     if (!o.replay.empty()) {  // a recording that cannot be played is refused before any window opens
       if (!o.sets.empty()) std::cerr << "sph_demo: --set is ignored with --replay (the frames are what was simulated)\n";
       const Recording recording = load_recording(o.replay);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../common/mesh.h"
+#include "../common/mesh_ply.h"
 #include "../common/vec3.h"
 
 namespace sph {
@@ -42,10 +43,5 @@ TriangleMesh particle_surface(const std::vector<Vec3>& positions, const SurfaceO
 // Surface area [m^2] and enclosed volume [m^3] of a closed mesh (the divergence theorem).
 double mesh_area(const TriangleMesh& mesh);
 double mesh_volume(const TriangleMesh& mesh);
-
-// Writes the mesh as a binary little-endian PLY (vertex x, y, z as float; face lists of 3 int indices), which
-// ParaView and Blender open, with "comment time T" (simulated seconds, 17 digits) in its header. Written to path.tmp and renamed, so a failed write leaves no partial file;
-// throws std::runtime_error naming the file.
-void write_ply_mesh(const std::string& path, const TriangleMesh& mesh, double time);
 
 }  // namespace sph
