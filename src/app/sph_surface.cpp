@@ -59,7 +59,7 @@ std::string surface_path(const std::string& frame, const std::string& out) {
 int main(int argc, char** argv) {
   std::vector<std::string> inputs;
   std::string out, resolution = "2";
-  bool force = false;
+  bool force = false, phi = false;
   CLI::App app{
       "sph_surface: the fluid's surface as a closed triangle mesh for each PLY frame of an sph_run (the particles\n"
       "rasterised as spheres into an OpenVDB level set, smoothed, eroded to the particles' volume and meshed).\n"
@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
   app.add_option("frames", inputs, "frame files (frame_NNNNN.ply) or sph_run output folders")->required();
   app.add_option("--out,-o", out, "folder for the meshes (default: next to each frame)");
   app.add_option("--resolution,-r", resolution, "voxels per particle spacing, a number in [1, 8] (default 2)");
+  app.add_flag("--phi", phi,
+               "mesh the seed's colour field Phi = sum d^3 W(r, 2 d) at 1/2 instead of the particles' spheres");
   app.add_flag("--force", force, "replace meshes that exist (without it an existing surface_NNNNN.ply is refused)");
   double voxels = 2.0;
   std::vector<std::string> files;
@@ -117,7 +119,7 @@ int main(int argc, char** argv) {
       particles = frame.particles.size();
       if (!(frame.info.spacing > 0.0)) throw std::runtime_error(files[k] + ": the frame records no particle spacing");
       const std::vector<Vec3> pos(frame.particles.pos.begin(), frame.particles.pos.end());
-      triangles = write_surface(target, pos, frame.info.spacing, voxels, frame.info.time);
+      triangles = write_surface(target, pos, frame.info.spacing, voxels, frame.info.time, phi);
     } catch (const std::invalid_argument& e) {  // options: the same for every frame
       std::cerr << "error: " << e.what() << "\n";
       return 1;

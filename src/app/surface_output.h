@@ -14,12 +14,13 @@ namespace sph {
 // Whether this build can make surfaces.
 bool surfaces_built_in();
 
-// Writes the surface mesh of the fluid at `positions` [m] (particle spacing [m], voxels per spacing in [1, 8])
+// Writes the surface mesh of the fluid at `positions` [m] (particle spacing [m], voxels per spacing in [1, 8];
+// colour_field: the seed's Phi instead of the particles' spheres, particle_surface.h)
 // to path as binary PLY, with the simulated time [s] in its header; returns the number of triangles. Throws std::invalid_argument for options out of
 // range, std::runtime_error when the build has no OpenVDB, the resolution needs more memory than the
 // machine has, or the file cannot be written (each message names the option or the file).
 std::size_t write_surface(const std::string& path, const std::vector<Vec3>& positions, double spacing,
-                          double voxels_per_spacing, double time);
+                          double voxels_per_spacing, double time, bool colour_field = false);
 
 // "surface_NNNNN.ply" for index NNNNN.
 std::string surface_file_name(int index);

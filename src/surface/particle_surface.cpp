@@ -14,6 +14,7 @@
 #include <openvdb/tools/ParticlesToLevelSet.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
+#include "../common/kernels.h"
 #include "../common/setup_budget.h"
 
 namespace sph {
@@ -45,11 +46,36 @@ openvdb::FloatGrid::Ptr smoothed_spheres(const std::vector<Vec3>& positions, con
   return grid;
 }
 
-TriangleMesh mesh_of(const openvdb::FloatGrid& grid) {
+// The seed's colour field Phi (SurfaceOptions::colour_field) on voxels of d / voxels_per_spacing: every
+// particle adds d^3 W to the voxels within h = 2 d of it (kernels.h's cubic spline).
+openvdb::FloatGrid::Ptr colour_field(const std::vector<Vec3>& positions, const SurfaceOptions& o) {
+  const double d = o.spacing, voxel = d / o.voxels_per_spacing, h = 2.0 * d;
+  const KernelCoeffs k = make_kernel_coeffs(h);
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+  auto acc = grid->getAccessor();
+  const int reach = int(std::ceil(h / voxel));
+  const float volume = float(d * d * d);
+  for (const Vec3& p : positions) {
+    const openvdb::Coord c = grid->transform().worldToIndexCellCentered(openvdb::Vec3d(p.x, p.y, p.z));
+    for (int i = -reach; i <= reach; ++i)
+      for (int j = -reach; j <= reach; ++j)
+        for (int l = -reach; l <= reach; ++l) {
+          const openvdb::Coord v = c.offsetBy(i, j, l);
+          const openvdb::Vec3d x = grid->transform().indexToWorld(v);
+          const double dx = x.x() - p.x, dy = x.y() - p.y, dz = x.z() - p.z;
+          const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+          if (r < h) acc.setValue(v, acc.getValue(v) + volume * cubic_spline(k, float(r)));
+        }
+  }
+  return grid;
+}
+
+TriangleMesh mesh_of(const openvdb::FloatGrid& grid, double isovalue = 0.0) {
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(grid, points, triangles, quads, 0.0, 0.0);
+  openvdb::tools::volumeToMesh(grid, points, triangles, quads, isovalue, 0.0);
   TriangleMesh mesh;
   mesh.vertices.reserve(points.size());
   for (const openvdb::Vec3s& p : points) mesh.vertices.push_back({double(p.x()), double(p.y()), double(p.z())});
@@ -148,6 +174,11 @@ TriangleMesh particle_surface(const std::vector<Vec3>& positions, const SurfaceO
     throw std::runtime_error(os.str());
   }
   openvdb::initialize();
+  if (o.colour_field) {
+    mesh = mesh_of(*colour_field(positions, o), 0.5);
+    update_bounds(mesh);
+    return mesh;
+  }
   openvdb::FloatGrid::Ptr grid = smoothed_spheres(positions, o);
   // Erode back to where the particles' volume ends (a positive offset moves the zero crossing inwards).
   openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);

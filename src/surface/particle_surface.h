@@ -22,6 +22,10 @@ struct SurfaceOptions {
   double radius = 1.5;             // sphere radius per particle [d]: large enough that the spheres of a
                                    // lattice overlap (> sqrt(3)/2) and its faces are nearly flat
   int smoothing = 2;               // mean-curvature flow iterations after the erosion; 0 to 20
+  // false: the particles' spheres (above); true: the seed's colour field (seed 002, section 6), Phi(x) =
+  // sum_j V_j W(|x - x_j|, h) with V_j = d^3 and the cubic spline of support h = 2 d, meshed at Phi = 1/2,
+  // where a half-space of fluid ends (no calibration; radius and smoothing are not used).
+  bool colour_field = false;
 };
 
 // The lengths the options mean and the check of their ranges. Throws std::invalid_argument naming the option
