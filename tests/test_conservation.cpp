@@ -82,3 +82,33 @@ TEST_CASE("symmetric pair forces conserve linear momentum", "[conservation]") {
   const Totals p1 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
   for (int k = 0; k < 3; ++k) CHECK(std::fabs(p1.momentum[k] - p0.momentum[k]) < 1e-4 * p0.scale);
 }
+
+TEST_CASE("number-density pair forces conserve momentum between fluids of density ratio 10", "[conservation][multiphase]") {
+  const std::string pressure_force = GENERATE(std::string("monaghan"), std::string("mueller"));
+  // Two touching halves of a cloud, water and a fluid ten times lighter (equal Tait B), every pair term on.
+  const std::string text = R"({
+    "name": "momentum_two_fluids",
+    "fluids": [ { "name": "heavy", "rest_density": 1000, "speed_of_sound": 10, "viscosity": 0.05, "artificial_viscosity": 0.1,
+                  "near_stiffness": 1.0, "surface_tension": 0.5, "xsph": 0.1 },
+                { "name": "light", "rest_density": 100, "speed_of_sound": 31.6, "viscosity": 0.01, "artificial_viscosity": 0.1,
+                  "near_stiffness": 1.0, "surface_tension": 0.05, "xsph": 0.1 } ],
+    "emitters": [ { "type": "box", "fluid": "heavy", "min": [-0.05, -0.05, -0.05], "max": [0, 0.05, 0.05] },
+                  { "type": "box", "fluid": "light", "min": [0, -0.05, -0.05], "max": [0.05, 0.05, 0.05] } ],
+    "resolution": { "spacing": 0.01 },
+    "sph": { "pressure_force": ")" + pressure_force + R"(", "viscosity": "morris", "multiphase": "number_density" },
+    "time_step": { "mode": "fixed", "dt": 1e-4 },
+    "gravity": [0, 0, 0]
+  })";
+  const sph::Scene scene = sph::parse_scene(text, "momentum_two_fluids");
+  const sph::Setup setup = sph::create_setup(scene, 1.0);
+  REQUIRE(setup.constants.number_density == 1);
+  sph::CpuBackend cpu(setup.constants);
+  cpu.upload(disorder(setup.particles, setup.spacing));
+  cpu.initialise_forces();
+  const Totals f = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.acc[i]; });
+  for (double component : f.momentum) CHECK(std::fabs(component) < 1e-5 * f.scale);
+  const Totals p0 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
+  for (int step = 0; step < 200; ++step) cpu.step(1e-4f);
+  const Totals p1 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
+  for (int k = 0; k < 3; ++k) CHECK(std::fabs(p1.momentum[k] - p0.momentum[k]) < 1e-4 * p0.scale);
+}

@@ -137,3 +137,14 @@ TEST_CASE("device models: near pressure, surface tension, XSPH and negative pres
   CHECK(near_p > 0.0f);
   CHECK(xsph > 0.0f);
 }
+
+TEST_CASE("device models: two fluids of density ratio 10 in the number-density form, with surface tension", "[device][models][multiphase]") {
+  // Water under a fluid ten times lighter (issue 15), both with cohesion; coarse, so 200 steps stay short.
+  const sph::Scene scene = scene_file("two_layers.json", {"resolution.particles_across=5", "fluids.0.surface_tension=0.5",
+                                                          "fluids.1.surface_tension=0.05"});
+  check_case(scene, {{"number density (to mass density)", [](sph::SimConstants& c) { c.number_density = 0; }},
+                     {"surface tension", [](sph::SimConstants& c) {
+                        c.surface_tension_enabled = 0;
+                        for (auto& f : c.fluids) f.cohesion = 0.0f;
+                      }}});
+}

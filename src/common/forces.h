@@ -65,13 +65,17 @@ void with_force_model(const SimConstants& c, F&& f) {
 
 // Pressure (and near pressure) pair term, returned as the scalar s with a_a += s * grad W; takes P / rho^2
 // and 1 / rho of each side, computed once per particle (pressure.h), so the pair term does not divide.
-// Monaghan symmetric, thesis eq. 2.18 divided by rho_a: -m_b (P_a / rho_a^2 + P_b / rho_b^2).
-// Mueller, thesis eq. 2.19 divided by rho_a: -m_b (P_a + P_b) / (2 rho_a rho_b).
+// Monaghan symmetric, thesis eq. 2.18 divided by rho_a: -(wa P_a / rho_a^2 + wb P_b / rho_b^2), wa = wb = m_b.
+// Mueller, thesis eq. 2.19 divided by rho_a: -wb (P_a + P_b) / (2 rho_a rho_b), wb = m_b.
+// Several fluids in the number-density form ([SP08] eq. 8, thesis eq. 3.6; SimConstants::number_density):
+// the force -sum_b (P_a / delta_a^2 + P_b / delta_b^2) grad W with delta = rho / m, divided by m_a, is
+// Monaghan's with wa = m_a and wb = m_b^2 / m_a (pair_weights); equal and opposite on a and b whatever the
+// masses. Mueller's form, -(1 / m_a) sum_b (P_a + P_b) / (2 delta_a delta_b) grad W, is the plain one.
 template <PressureForm kForm>
-SPH_HD inline float pressure_pair(float mb, float pa, float pa_rho2, float inv_rhoa, float pb, float pb_rho2,
+SPH_HD inline float pressure_pair(float wa, float wb, float pa, float pa_rho2, float inv_rhoa, float pb, float pb_rho2,
                                   float inv_rhob) {
-  if (kForm == PressureForm::MonaghanSymmetric) return -mb * (pa_rho2 + pb_rho2);
-  return -0.5f * mb * (pa + pb) * inv_rhoa * inv_rhob;
+  if (kForm == PressureForm::MonaghanSymmetric) return -(wa * pa_rho2 + wb * pb_rho2);
+  return -0.5f * wb * (pa + pb) * inv_rhoa * inv_rhob;
 }
 
 // The pair terms a particle a gets from a neighbour b or from a wall's ghost of b: pressure, near pressure
@@ -116,8 +120,8 @@ SPH_HD_ALWAYS_INLINE Vec3 laminar_viscosity_pair(const SimConstants& c, const Pa
   const KernelCoeffs& k = c.kernel;
   const float mb = b.mass;
   switch (c.viscosity) {
-    case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a: mu sum m_b (v_b - v_a)/rho_b lap W / rho_a
-      return -(a.fluid->viscosity * mb * viscosity_laplacian(k, r) * a.inv_rho * b.inv_rho) * vab;
+    case ViscosityModel::Mueller:  // thesis eq. 2.24 / rho_a with the fluids' mean mu (thesis 3.3), symmetric
+      return -(0.5f * (a.fluid->viscosity + b.fluid->viscosity) * mb * viscosity_laplacian(k, r) * a.inv_rho * b.inv_rho) * vab;
     case ViscosityModel::Morris:  // Morris 1997: sum m_b (mu_a + mu_b)/(rho_a rho_b) (x_ab.gradW)/(r^2+eps^2) v_ab
       return (mb * (a.fluid->viscosity + b.fluid->viscosity) * grad * r2 * a.inv_rho * b.inv_rho /
               (r2 + kPairEps2 * k.h2)) * vab;
@@ -126,6 +130,17 @@ SPH_HD_ALWAYS_INLINE Vec3 laminar_viscosity_pair(const SimConstants& c, const Pa
       break;
   }
   return Vec3{0.0f, 0.0f, 0.0f};
+}
+
+// Surface tension as cohesion between two particles of one fluid (guided_creation.h: the pair force
+// -gamma m_a m_b C(r) x_ab / r of [AKT13] eq. 1 with their kernel C, eq. 2, and gamma calibrated from sigma in
+// N/m): particle a's acceleration, to be subtracted. Akinci's curvature term and the factor
+// K_ab = 2 rho0 / (rho_a + rho_b) are left out: the calibration counts the missing neighbours of a surface
+// particle as they are, and the curvature term carries no units that sigma could fix. Fluids do not pull on
+// each other, so two fluids with sigma_1 and sigma_2 meet with an interface tension of sigma_1 + sigma_2.
+SPH_HD_ALWAYS_INLINE Vec3 cohesion_pair(const KernelCoeffs& k, const FluidConstants& fa, float mb, float r2, Vec3 xab) {
+  const float r = sqrtf(r2);
+  return (fa.cohesion * mb * akinci_cohesion_shape(r / k.h) / r) * xab;
 }
 
 template <class Model>
@@ -137,11 +152,15 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
   const float mb = b.mass;
   const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
 
-  float s = Model::pressure ? pressure_pair<Model::form>(mb, a.pressure, a.pressure_rho2, a.inv_rho, b.pressure,
+  // The pressure terms' weights (pressure_pair): m_b, or Monaghan's number-density form's m_a and m_b^2 / m_a.
+  const bool number_density = Model::form == PressureForm::MonaghanSymmetric && c.number_density;
+  const float wa = number_density ? a.mass : mb;
+  const float wb = number_density ? mb * (mb / a.mass) : mb;
+  float s = Model::pressure ? pressure_pair<Model::form>(wa, wb, a.pressure, a.pressure_rho2, a.inv_rho, b.pressure,
                                                          b.pressure_rho2, b.inv_rho) * grad
                             : 0.0f;
   if (Model::near && Model::pressure)  // double density relaxation, thesis 3.1: near pressures on the sharper kernel
-    s += pressure_pair<Model::form>(mb, a.near_pressure, a.near_pressure_rho2, a.inv_rho, b.near_pressure,
+    s += pressure_pair<Model::form>(wa, wb, a.near_pressure, a.near_pressure_rho2, a.inv_rho, b.near_pressure,
                                     b.near_pressure_rho2, b.inv_rho) * near_dwdr(k, r) * inv_r;
 
   acc += laminar_viscosity_pair(c, a, b, r, r2, grad, vab);
@@ -150,7 +169,8 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
 }
 
 // A boundary pair ([AIA12] section 3.2): fluid particle a and a boundary or body particle b, which stands for
-// fluid at rest density, mass Psi_b = rho0_a V_b, moving with its solid:
+// fluid at rest density, mass Psi_b = rho0_a V_b, moving with its solid (in the number-density form too: b
+// counts as V_b / V_a particles of a's fluid, whose weights m_a and m_a^2 / m_a times V_b / V_a are Psi_b):
 // - pressure: a's pressure extrapolated hydrostatically to x_b (as the mirror ghosts, mirror_walls.h;
 //   SPlisHSPlasH mirrors P_a unchanged), P_a and P_b at least 0 so a wall never pulls: the pressure pair term
 //   of the form Model::form; the near pressure mirrored unchanged;
@@ -189,10 +209,10 @@ SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides
     // held without extra compression at the floor.
     const float pb = s.fluid.pressure - s.rho0 * dot(c.gravity, xab);
     const float pw = pb > 0.0f ? pb : 0.0f;
-    f = pressure_pair<Model::form>(s.wall.mass, s.fluid.pressure, s.fluid.pressure_rho2, s.fluid.inv_rho, pw,
+    f = pressure_pair<Model::form>(s.wall.mass, s.wall.mass, s.fluid.pressure, s.fluid.pressure_rho2, s.fluid.inv_rho, pw,
                                    pw * s.inv_rho0 * s.inv_rho0, s.wall.inv_rho) * spiky_dwdr(k, r) * inv_r;
     if (Model::near)
-      f += pressure_pair<Model::form>(s.wall.mass, s.fluid.near_pressure, s.fluid.near_pressure_rho2, s.fluid.inv_rho,
+      f += pressure_pair<Model::form>(s.wall.mass, s.wall.mass, s.fluid.near_pressure, s.fluid.near_pressure_rho2, s.fluid.inv_rho,
                                       s.wall.near_pressure, s.wall.near_pressure_rho2, s.wall.inv_rho) * near_dwdr(k, r) * inv_r;
   }
   // The artificial viscosity at every wall on the velocity along the wall's normal, whatever the slip, as
@@ -286,10 +306,7 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
     const Vec3 vab = va - side_b.vel;
     pressure_viscosity_pair<Model>(c, side_a, side_b, xab, r2, vab, acc);
     const float mb = side_b.mass;
-    if (c.surface_tension_enabled) {  // Becker & Teschner 2007 cohesion, thesis eq. 3.12
-      const float kappa = 0.5f * (fa.cohesion + fb.cohesion);
-      acc -= (kappa * mb / side_a.mass * poly6(k, r2)) * xab;
-    }
+    if (c.surface_tension_enabled && &fa == &fb) acc -= cohesion_pair(k, fa, mb, r2, xab);
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
       dv -= xsph_pair_weight(k, fa.xsph, mb, r2, side_a.rho, side_b.rho) * vab;
     }

@@ -1,5 +1,7 @@
 #include "guided_creation.h"
 
+#include "scene_fluids.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +10,7 @@
 
 #include "setup_budget.h"
 #include "rigid_body_setup.h"
+#include "scene_fluids.h"
 #include "setup_checks.h"
 
 #include "frame_reader.h"
@@ -37,9 +40,16 @@ double lattice_density_factor(double d, double h) {
   return sum * d * d * d;
 }
 
-double cohesion_from_surface_tension(double sigma, double mass, double rest_density, double h) {
-  return sigma * mass / ((315.0 / 61440.0) * rest_density * rest_density * h * h * h);
+namespace {
+constexpr double kCohesionJ3 = 33.0 / 28672.0;  // int_0^1 q^3 c(q) dq, c: akinci_cohesion_shape
+constexpr double kCohesionJ4 = 21.0 / 28160.0;  // int_0^1 q^4 c(q) dq
+}  // namespace
+
+double cohesion_from_surface_tension(double sigma, double rest_density, double h) {
+  return 8.0 * sigma / (3.14159265358979323846 * rest_density * rest_density * std::pow(h, 5) * kCohesionJ4);
 }
+
+double cohesion_pressure(double sigma, double h) { return 16.0 / 3.0 * (kCohesionJ3 / kCohesionJ4) * sigma / h; }
 
 namespace {
 
@@ -306,6 +316,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing);
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
   check_incompressible_step(scene, s.spacing);
+  check_surface_tension(scene, s.h);
   report_ignored_settings(scene, s.report);
   s.meshes = load_meshes(scene);
 
@@ -336,7 +347,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.viscosity = float(f.viscosity);
     fc.artificial_alpha = float(f.artificial_viscosity);
     fc.near_stiffness = float(f.near_stiffness);
-    fc.cohesion = float(cohesion_from_surface_tension(f.surface_tension, fc.mass, f.rest_density, s.h));
+    fc.cohesion = float(cohesion_from_surface_tension(f.surface_tension, f.rest_density, s.h));
     fc.xsph = float(f.xsph);
     fc.lifetime = 0.0f;
     if (f.near_stiffness > 0.0) c.near_enabled = 1;
@@ -345,6 +356,8 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     if (f.artificial_viscosity > 0.0) c.artificial_enabled = 1;
     s.max_speed_of_sound = std::max(s.max_speed_of_sound, f.speed_of_sound);
   }
+  for (int32_t i = 1; i < c.num_fluids; ++i)
+    if (c.fluids[i].mass != c.fluids[0].mass) c.number_density = scene.number_density ? 1 : 0;
   s.viscous_rate = viscous_rate(c, s.spacing, s.h, s.lattice_density);
   c.num_shapes = int32_t(scene.boundaries.size());
   for (std::size_t i = 0; i < scene.boundaries.size(); ++i) c.shapes[i] = scene.boundaries[i].shape;

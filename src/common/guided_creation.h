@@ -43,11 +43,23 @@ double smoothing_length(double spacing, double neighbours);
 // sum over the cubic lattice of spacing d of W_poly6(|x|, h), times d^3 (1 for a perfect quadrature).
 double lattice_density_factor(double spacing, double h);
 
-// Becker-Teschner cohesion a_a = -kappa sum_b (m_b / m_a) x_ab W_poly6 read as a pair potential with
-// u'(r) = kappa m r W(r): on a uniform fluid of density rho0 its Kirkwood-Buff surface tension is
-// sigma = (pi / 8) (rho0^2 / m) kappa int_0^h r^5 W dr = (315 / 61440) (rho0^2 / m) kappa h^3, so the
-// physical sigma [N/m] of the scene maps to kappa = sigma m / (0.005127 rho0^2 h^3).
-double cohesion_from_surface_tension(double sigma, double mass, double rest_density, double h);
+// Surface tension sigma [N/m] as cohesion between particles of one fluid (forces.h), with the cohesion kernel
+// of Akinci, Akinci & Teschner 2013 (eq. 2, kernels.h: C(r) = 32 / (pi h^3) c(r / h)) as a pair force
+// F_ab = -gamma m_a m_b C(r) x_ab / r, calibrated from sigma by the mean-field (Kirkwood-Buff) surface
+// energy of a pair potential u with u'(r) = gamma m^2 C(r) in a fluid of number density n = rho0 / m:
+// cutting the fluid costs sigma = -(pi / 2) n^2 int r^3 u dr = (pi / 8) n^2 int_0^h r^4 u'(r) dr
+// = (pi / 8) rho0^2 gamma (32 / pi) h^2 J4, J4 = int_0^1 q^4 c(q) dq = 21 / 28160 (exact), so
+// gamma = sigma / (4 rho0^2 h^2 J4) (Tartakovsky & Panchenko 2016 calibrate their pairwise force so).
+// Returns the fluid's cohesion constant gamma 32 / (pi h^3) = 8 sigma / (pi rho0^2 h^5 J4) [m / (kg s^2)]:
+// a_a = -constant sum_b m_b c(r / h) x_ab / r. Unlike Akinci's gamma, sigma carries its units: the force
+// per particle does not change with the resolution or the mass, and a drop's Laplace pressure and
+// oscillation period follow from sigma (tests/test_surface_tension.cpp).
+double cohesion_from_surface_tension(double sigma, double rest_density, double h);
+
+// The cohesion's internal pressure [Pa], the virial of the pair force in the bulk,
+// (2 pi / 3) n^2 int r^3 u'(r) dr = (16 / 3) (J3 / J4) sigma / h = 8.23 sigma / h, J3 = 33 / 28672: the
+// equation of state must hold it, so it compresses the fluid by about this / (rho0 c0^2).
+double cohesion_pressure(double sigma, double h);
 
 // The speed bound when the energy check cannot give one (a user force doing work) [m/s]:
 // limits.blowup_speed, or ten times the fastest of the speeds of sound and the jets (weakly compressible

@@ -133,4 +133,16 @@ SPH_HD inline float cubic_spline_grad_fac(const KernelCoeffs& k, float r) {
   return dwdq / (k.h * r);
 }
 
+// Akinci, Akinci & Teschner 2013 eq. 2, the cohesion kernel, support h: C(r) = 32 / (pi h^3) c(r / h) with
+//   c(q) = (1 - q)^3 q^3               for 1/2 < q < 1,
+//   c(q) = 2 (1 - q)^3 q^3 - 1 / 64    for 0 < q <= 1/2,
+// 0 beyond. Attractive (c > 0) from q = 0.273 to 1, repulsive below, so cohesion does not pull particles into
+// pairs. Returns c(q); the 32 / (pi h^3) goes into the fluid's cohesion constant (guided_creation.h).
+SPH_HD inline float akinci_cohesion_shape(float q) {
+  if (q >= 1.0f) return 0.0f;
+  const float d = 1.0f - q;
+  const float c = d * d * d * q * q * q;
+  return q > 0.5f ? c : 2.0f * c - 1.0f / 64.0f;
+}
+
 }  // namespace sph

@@ -96,7 +96,7 @@ struct FluidConstants {
   float viscosity;         // mu [Pa s] for Mueller and Morris
   float artificial_alpha;  // alpha for Monaghan artificial viscosity
   float near_stiffness;    // k_near [m^2/s^2], P_near = k_near rho_near (thesis 3.1); 0 disables
-  float cohesion;          // Becker-Teschner cohesion kappa [1/s^2] calibrated from sigma; 0 disables
+  float cohesion;          // 8 sigma / (pi rho0^2 h^5 J4) [m/(kg s^2)], cohesion from sigma (guided_creation.h); 0 disables
   float xsph;              // XSPH epsilon; 0 disables
   float lifetime;          // particles older than this are recycled [s]; 0 = never
 };
@@ -155,6 +155,11 @@ struct SimConstants {
   Integrator integrator;
   int32_t clamp_negative_pressure;  // 1: P = max(P, 0) (no tensile pull at a free surface)
   int32_t mirror_walls;             // 1: neighbours near walls act also as their mirror images (mirror_walls.h)
+  // 1: several fluids of different particle mass, density and pressure force in the number-density form of
+  // Solenthaler & Pajarola 2008 (thesis 3.4.3, eqs. 3.5-3.6; density.h, forces.h). Set only where the
+  // scene asks for it (sph.multiphase) and the fluids' masses differ: with equal masses the two forms are
+  // the same, and single-fluid scenes keep their arithmetic bit for bit.
+  int32_t number_density;
   int32_t near_enabled;             // any fluid with near_stiffness > 0
   int32_t surface_tension_enabled;  // any fluid with surface_tension > 0
   int32_t xsph_enabled;             // any fluid with xsph > 0

@@ -27,7 +27,7 @@ struct FluidSpec {
   double viscosity = 1e-3;         // mu [Pa s], the laminar viscosity (Mueller or Morris, sph.viscosity)
   double artificial_viscosity = 0.05; // alpha of Monaghan's artificial viscosity, added to any laminar model; 0 = off
   double near_stiffness = 0.0;     // k_near, m^2/s^2; 0 = no double density relaxation
-  double surface_tension = 0.0;    // sigma [N/m], Becker-Teschner cohesion calibrated to it; 0 = off
+  double surface_tension = 0.0;    // sigma [N/m], cohesion calibrated to it (guided_creation.h); 0 = off
   double xsph = 0.0;               // XSPH epsilon; 0 = off
 };
 
@@ -170,6 +170,10 @@ struct Scene {
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)
   bool boundary_particles = false;     // sph.walls: "particles" (boundary_particles.h, [AIA12])
+  // sph.multiphase: "number_density" (Solenthaler & Pajarola 2008; density.h, forces.h), the default, or
+  // "mass_density" (the plain sums of the neighbours' masses, which fail beyond a density ratio of about
+  // 1.25 between touching fluids: issue 15). Only fluids of different particle mass tell them apart.
+  bool number_density = true;
   Integrator integrator = Integrator::ModifiedVelocityVerlet;  // WCSPH's; DFSPH and PBF integrate their own way
   // The pressure solver ("solver") and the settings of the incompressible ones (blocks "dfsph", "pbf";
   // params.h says what each is). DFSPH reads sph.viscosity and sph.walls and the fluids' viscosity and

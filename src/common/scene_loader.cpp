@@ -13,6 +13,7 @@
 
 #include "scene.h"
 #include "scene_file.h"
+#include "scene_fluids.h"
 #include "scene_reader.h"
 
 namespace sph {
@@ -385,7 +386,7 @@ Scene read_scene(const json& root, const std::string& source) {
 
   if (r.has("sph")) {
     ObjectReader sr(r.raw("sph"), source, "sph");
-    sr.allow({"density", "equation_of_state", "pressure_force", "viscosity", "negative_pressure", "walls"});
+    sr.allow({"density", "equation_of_state", "pressure_force", "viscosity", "negative_pressure", "walls", "multiphase"});
     s.density = sr.choice<DensityMethod>("density", s.density,
                                          {{"summation", DensityMethod::Summation}, {"continuity", DensityMethod::Continuity}});
     s.eos = sr.choice<EquationOfState>("equation_of_state", s.eos,
@@ -404,10 +405,13 @@ Scene read_scene(const json& root, const std::string& source) {
                                      {{"penalty", 0}, {"mirror", 1}, {"particles", 2}});
     s.mirror_walls = walls == 1;
     s.boundary_particles = walls == 2;
+    s.number_density = sr.choice<bool>("multiphase", s.number_density,
+                                       {{"number_density", true}, {"mass_density", false}});
     sr.finish();
   }
 
   read_solver(r, s);
+  check_fluid_ratios(s);
   if (!s.bodies.empty() && !s.boundary_particles)
     fail(source, "bodies", "rigid bodies are made of boundary particles: set \"sph\": {\"walls\": \"particles\"} (--set sph.walls=particles)");
   if (!s.bodies.empty() && s.solver == Solver::Pbf)

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "cohesion_energy.h"
 #include "equation_of_state.h"
 #include "metrics.h"
 #include "rigid_body_setup.h"
@@ -83,10 +84,12 @@ void Simulation::rebase_energy(const ParticleState& ps) {
   }
   energy_in_ = mass_in_ = 0.0;
   max_specific_in_ = -std::numeric_limits<double>::infinity();
+  // Surface tension's share: the surface energy the cohesion can release (cohesion_energy.h).
+  const std::vector<double> surface = cohesion_excess_energy(c, ps, setup_.spacing);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.age[i] >= kRemovedAge) continue;
     const FluidConstants& f = c.fluids[ps.fluid[i]];
-    const double u = specific_internal_energy(c, f, ps.density[i]) +
+    const double u = specific_internal_energy(c, f, ps.density[i]) + surface[i] +
                      (c.near_enabled ? near_internal_energy(f, ps.near_density[i], ps.density[i]) : 0.0);
     add_energy(ps.pos[i], ps.vel[i], ps.fluid[i], u);
   }

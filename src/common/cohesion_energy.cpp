@@ -1,0 +1,79 @@
+#include "cohesion_energy.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+namespace sph {
+
+namespace {
+
+// Antiderivative of s^3 (1 - s)^3.
+double shape_antiderivative(double s) {
+  const double s4 = s * s * s * s;
+  return s4 * (0.25 - 0.6 * s + 0.5 * s * s - s * s * s / 7.0);
+}
+
+}  // namespace
+
+double akinci_cohesion_potential_shape(double q) {
+  if (q >= 1.0) return 0.0;
+  const double full = shape_antiderivative(1.0);  // 1 / 140
+  if (q > 0.5) return full - shape_antiderivative(q);
+  const double outer = full - shape_antiderivative(0.5);
+  return outer + 2.0 * (shape_antiderivative(0.5) - shape_antiderivative(q)) - (0.5 - q) / 64.0;
+}
+
+std::vector<double> cohesion_excess_energy(const SimConstants& c, const ParticleState& ps, double spacing) {
+  std::vector<double> excess(ps.size(), 0.0);
+  if (!c.surface_tension_enabled || ps.size() == 0) return excess;
+  const double h = c.kernel.h;
+  // A particle's share in the bulk: half the sum over a full cubic lattice of spacing d, per unit mass^2.
+  const long n = long(std::ceil(h / spacing));
+  double lattice = 0.0;
+  for (long k = -n; k <= n; ++k)
+    for (long j = -n; j <= n; ++j)
+      for (long i = -n; i <= n; ++i) {
+        const double r = spacing * std::sqrt(double(i * i + j * j + k * k));
+        if (r > 0.0 && r < h) lattice += akinci_cohesion_potential_shape(r / h);
+      }
+  // Cells of h: a particle's neighbours lie in the 27 cells around its own.
+  auto cell_of = [h](const Vec3& x) {
+    return std::array<int64_t, 3>{int64_t(std::floor(x.x / h)), int64_t(std::floor(x.y / h)), int64_t(std::floor(x.z / h))};
+  };
+  auto key = [](int64_t i, int64_t j, int64_t k) {
+    return (uint64_t(i) & 0x1FFFFF) | ((uint64_t(j) & 0x1FFFFF) << 21) | ((uint64_t(k) & 0x1FFFFF) << 42);
+  };
+  std::unordered_map<uint64_t, std::vector<uint32_t>> cells;
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    if (ps.age[a] >= kRemovedAge) continue;
+    const auto ca = cell_of(ps.pos[a]);
+    cells[key(ca[0], ca[1], ca[2])].push_back(uint32_t(a));
+  }
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    const FluidConstants& f = c.fluids[ps.fluid[a]];
+    if (f.cohesion == 0.0f || ps.age[a] >= kRemovedAge) continue;
+    const auto ca = cell_of(ps.pos[a]);
+    double sum = 0.0;  // sum_b m_b int_{r/h}^1 c over a's fluid
+    for (int64_t dk = -1; dk <= 1; ++dk)
+      for (int64_t dj = -1; dj <= 1; ++dj)
+        for (int64_t di = -1; di <= 1; ++di) {
+          const auto it = cells.find(key(ca[0] + di, ca[1] + dj, ca[2] + dk));
+          if (it == cells.end()) continue;
+          for (const uint32_t b : it->second) {
+            if (b == a || ps.fluid[b] != ps.fluid[a]) continue;
+            const Vec3 x = ps.pos[a] - ps.pos[b];
+            const double r = std::sqrt(double(x.x) * x.x + double(x.y) * x.y + double(x.z) * x.z);
+            if (r < h) sum += akinci_cohesion_potential_shape(r / h);
+          }
+        }
+    // (e_a - e_bulk) / m_a = 1/2 m (-constant h) (sum - lattice): u / (m_a m_b) = -constant h int_{r/h}^1 c,
+    // the fluid's cohesion constant being gamma 32 / (pi h^3), and the neighbours have a's mass (one fluid).
+    const double e = 0.5 * double(f.mass) * (-double(f.cohesion) * h) * (sum - lattice);
+    excess[a] = e > 0.0 ? e : 0.0;
+  }
+  return excess;
+}
+
+}  // namespace sph

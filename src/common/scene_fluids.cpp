@@ -1,0 +1,74 @@
+#include "scene_fluids.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "guided_creation.h"
+
+namespace sph {
+
+namespace {
+
+std::string fluid_key(std::size_t i) { return "fluids." + std::to_string(i); }
+
+double tait_b(const FluidSpec& f) { return f.rest_density * f.speed_of_sound * f.speed_of_sound / 7.0; }
+
+}  // namespace
+
+void check_fluid_ratios(const Scene& scene) {
+  const std::vector<FluidSpec>& fluids = scene.fluids;
+  for (std::size_t i = 0; i < fluids.size(); ++i)
+    for (std::size_t j = 0; j < fluids.size(); ++j) {
+      const FluidSpec& heavy = fluids[i];
+      const FluidSpec& light = fluids[j];
+      if (i == j || heavy.rest_density <= light.rest_density) continue;
+      const double ratio = heavy.rest_density / light.rest_density;
+      std::ostringstream os;
+      os << scene.source << ": ";
+      if (scene.solver != Solver::Wcsph) {
+        os << "solver: \"" << solver_name(scene.solver) << "\" holds fluids of one rest density only so far (its pressure "
+           << "solve has no number-density form); " << fluid_key(i) << " (" << heavy.rest_density << " kg/m^3) and "
+           << fluid_key(j) << " (" << light.rest_density << " kg/m^3) differ: use \"solver\": \"wcsph\"";
+        throw SceneError(os.str());
+      }
+      if (!scene.number_density && ratio > kMassDensityRatioLimit) {
+        os << "sph.multiphase: \"mass_density\" holds touching fluids whose rest densities differ by at most a factor "
+           << kMassDensityRatioLimit << ", but " << fluid_key(i) << " and " << fluid_key(j) << " differ by " << ratio
+           << " (" << heavy.rest_density << " and " << light.rest_density
+           << " kg/m^3): use \"multiphase\": \"number_density\" (allowed: number_density, mass_density)";
+        throw SceneError(os.str());
+      }
+      const double b_ratio = tait_b(heavy) / tait_b(light);
+      if (scene.number_density && b_ratio > kTaitRatioLimit) {
+        const double c_min = std::sqrt(tait_b(heavy) / kTaitRatioLimit * 7.0 / light.rest_density);
+        os << fluid_key(j) << ".speed_of_sound: " << light.speed_of_sound << " m/s makes Tait's B = rho0 c0^2 / 7 of "
+           << fluid_key(j) << " " << b_ratio << " times smaller than that of " << fluid_key(i)
+           << "; touching fluids may differ by at most " << kTaitRatioLimit << " (at the interface each side's pressure "
+           << "must follow about the same law), so give " << fluid_key(j) << " a speed of sound of at least " << c_min
+           << " m/s (the time step shrinks in proportion)";
+        throw SceneError(os.str());
+      }
+    }
+}
+
+void check_surface_tension(const Scene& scene, double h) {
+  if (scene.solver != Solver::Wcsph) return;  // the incompressible solvers hold any pressure
+  for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
+    const FluidSpec& f = scene.fluids[i];
+    if (!(f.surface_tension > 0.0)) continue;
+    const double p = cohesion_pressure(f.surface_tension, h);
+    const double compression = p / (f.rest_density * f.speed_of_sound * f.speed_of_sound);
+    if (compression <= kCohesionCompressionLimit) continue;
+    std::ostringstream os;
+    os.precision(3);
+    os << scene.source << ": " << fluid_key(i) << ".speed_of_sound: " << f.speed_of_sound << " m/s is too soft for "
+       << fluid_key(i) << ".surface_tension = " << f.surface_tension << " N/m at this resolution (h = " << h
+       << " m): the cohesion's internal pressure 8.23 sigma / h = " << p << " Pa would compress the fluid by "
+       << 100.0 * compression << "%, more than " << 100.0 * kCohesionCompressionLimit
+       << "%. Allowed: a speed of sound of at least "
+       << std::sqrt(p / (kCohesionCompressionLimit * f.rest_density)) << " m/s (or a smaller sigma, or a coarser resolution)";
+    throw SceneError(os.str());
+  }
+}
+
+}  // namespace sph

@@ -1,0 +1,31 @@
+// What a scene's fluids ask of the multi-fluid formulation and of the solver (issue 15), checked when the
+// scene is loaded (scene_loader.cpp): a combination that cannot hold the fluids at rest is refused with the
+// key and the limit, rather than run into a blow-up.
+#pragma once
+
+#include "scene.h"
+
+namespace sph {
+
+// Density ratios between the scene's fluids (SceneError naming the key otherwise):
+// - sph.multiphase "mass_density": rest densities within a factor kMassDensityRatioLimit of each other (a
+//   water-over-oil layering at ratio 2 rose 6 cm in 0.1 s; at 1.25 it stayed near rest);
+// - "number_density": Tait's B = rho0 c0^2 / 7 of any two fluids within a factor kTaitRatioLimit (the
+//   pressure must be about the same function of the number density on both sides of an interface: layers
+//   at density ratio 100 with one c0, B ratio 0.01, moved at 2.6 m/s; ratio 10 and ratio 1000 with the light
+//   fluid's c0 raised to B ratio 0.1 stayed below 0.1 m/s; docs/results.md);
+// - solvers "dfsph" and "pbf": one particle mass (their pressure solves have no number-density form yet).
+void check_fluid_ratios(const Scene& scene);
+
+// Surface tension against the equation of state (WCSPH): the cohesion's internal pressure
+// (cohesion_pressure, guided_creation.h) may compress a fluid by at most kCohesionCompressionLimit, i.e.
+// 8.23 sigma / h <= limit rho0 c0^2 (SceneError naming fluids.N.speed_of_sound and its least value
+// otherwise). Under a softer fluid the cohesion crushes the drop it should shape: a 0.1 m cube with
+// sigma = 4 N/m and c0 = 5 m/s (compression 10%) flew apart.
+void check_surface_tension(const Scene& scene, double h);
+
+constexpr double kCohesionCompressionLimit = 0.03;
+constexpr double kMassDensityRatioLimit = 1.25;
+constexpr double kTaitRatioLimit = 10.0;
+
+}  // namespace sph
