@@ -110,3 +110,9 @@ TEST_CASE("device solvers: a floating box under DFSPH", "[device][solvers][bodie
   compare_runs(scene, 20, &ref);
   CHECK(ref->backend().bodies().at(0).force[1] != 0.0);
 }
+
+TEST_CASE("device solvers: DFSPH with two fluids of density ratio 10 in the number-density form", "[device][solvers][multiphase]") {
+  const sph::Scene scene = scene_file("two_layers.json", {"resolution.particles_across=5", "solver=dfsph"});
+  REQUIRE(scene.number_density);
+  check_solver_case(scene, 30);
+}

@@ -20,6 +20,12 @@
 // pushed with kappa_i alone gave the wall no pressure gradient, so the column's edges, with a quarter of
 // their neighbours real, were squeezed up at 1 m/s.
 
+// Several fluids (SimConstants::number_density, [SP08]; density.h and forces.h for WCSPH): every neighbour
+// counts with particle i's mass m_i in the density, its rate and alpha, and the pressure acceleration takes
+// the number-density form's weights m_i and m_j^2 / m_i (forces.h, pressure_pair); alpha is then the Jacobi
+// diagonal of that system, rho_i / (|sum_j m_i grad W_ij|^2 + sum_j (m_i^3 / m_j) |grad W_ij|^2). With one
+// particle mass nothing changes. dfsph_mass gives the neighbour's weight.
+
 // Units (SI): m [kg], rho [kg/m^3], grad W [1/m^4], alpha [m^5/kg], kappa [m^2/s^2], acceleration [m/s^2].
 #pragma once
 
@@ -47,17 +53,22 @@ constexpr float kDfsphRelaxation = 0.5f;
 // not a divergence, and correcting it flung surface particles up at steps of 4 ms (measured).
 constexpr float kDfsphMinSupport = 0.6f;
 
+// Neighbour j's mass in particle i's sums: m_j, or m_i in the number-density form (above).
+SPH_HD_ALWAYS_INLINE float dfsph_mass(const SimConstants& c, const ParticleView& p, int32_t i, int32_t j) {
+  return c.number_density ? p.pos_mass[i].w : p.pos_mass[j].w;
+}
+
 // Seed eq. 7: rho_i = sum_j m_j W_ij with the cubic spline, the particle itself included, plus the wall
 // ghosts. [kg/m^3]
 SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   float rho = 0.0f;
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3, float r2) {
-    rho += p.pos_mass[j].w * cubic_spline(k, sqrtf(r2));
+    rho += dfsph_mass(c, p, i, j) * cubic_spline(k, sqrtf(r2));
   });
   const NearWalls walls = c.mirror_walls ? near_walls(c, xyz(p.pos_mass[i])) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) {
-    rho += p.pos_mass[j].w * cubic_spline(k, sqrtf(r2));
+    rho += dfsph_mass(c, p, i, j) * cubic_spline(k, sqrtf(r2));
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xyz(p.pos_mass[i]), k.h2, [&](int32_t, Vec3, float r2, float volume) {
@@ -79,14 +90,15 @@ SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, con
   float sum_grad2 = 0.0f;           // sum_j |m_j grad W_ij|^2 [kg^2/m^8]
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    const Vec3 g = (p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
+    const Vec3 g = (dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
     sum_grad += g;
-    sum_grad2 += length2(g);
+    // Number density: (m_i^3 / m_j) |grad W|^2 = |m_i grad W|^2 m_i / m_j (above).
+    sum_grad2 += c.number_density ? length2(g) * (p.pos_mass[i].w / p.pos_mass[j].w) : length2(g);
   });
   const Vec3 xi = xyz(p.pos_mass[i]);
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    if (r2 > 0.0f) sum_grad += (p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    if (r2 > 0.0f) sum_grad += (dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
@@ -128,12 +140,12 @@ SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& gr
   float rate = 0.0f;
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    rate += p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi - vel[j], xij);
+    rate += dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi - vel[j], xij);
   });
   const Vec3 xi = xyz(p.pos_mass[i]);
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    if (r2 > 0.0f) rate += p.pos_mass[j].w * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi, xi - xg);
+    if (r2 > 0.0f) rate += dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi, xi - xg);
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
@@ -183,15 +195,20 @@ SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const Grid
   const KernelCoeffs& k = c.kernel;
   const float ki = kappa[i] / p.density[i];
   Vec3 acc{0.0f, 0.0f, 0.0f};
+  // The pair's weight: m_j (k_i + k_j), or the number-density form's m_i k_i + (m_j^2 / m_i) k_j.
+  const float mi = p.pos_mass[i].w;
+  const auto pair = [&](int32_t j) {
+    const float mj = p.pos_mass[j].w, kj = kappa[j] / p.density[j];
+    return c.number_density ? mi * ki + mj * (mj / mi) * kj : mj * (ki + kj);
+  };
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    const float s = p.pos_mass[j].w * (ki + kappa[j] / p.density[j]);
-    acc -= (s * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
+    acc -= (pair(j) * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
   });
   const Vec3 xi = xyz(p.pos_mass[i]);
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    if (r2 > 0.0f) acc -= (p.pos_mass[j].w * (ki + kappa[j] / p.density[j]) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    if (r2 > 0.0f) acc -= (pair(j) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
   // Boundary and body particles push with the particle's stiffness mirrored (kappa_b / rho_b = kappa_i / rho_i,
   // dfsph_boundary_hydrostatic adds the hydrostatic rest of P_b).

@@ -25,10 +25,10 @@ void check_fluid_ratios(const Scene& scene) {
       const double ratio = heavy.rest_density / light.rest_density;
       std::ostringstream os;
       os << scene.source << ": ";
-      if (scene.solver != Solver::Wcsph) {
-        os << "solver: \"" << solver_name(scene.solver) << "\" holds fluids of one rest density only so far (its pressure "
-           << "solve has no number-density form); " << fluid_key(i) << " (" << heavy.rest_density << " kg/m^3) and "
-           << fluid_key(j) << " (" << light.rest_density << " kg/m^3) differ: use \"solver\": \"wcsph\"";
+      if (scene.solver == Solver::Pbf) {
+        os << "solver: \"pbf\" holds fluids of one rest density only so far (its constraint has no number-density "
+           << "form); " << fluid_key(i) << " (" << heavy.rest_density << " kg/m^3) and " << fluid_key(j) << " ("
+           << light.rest_density << " kg/m^3) differ: use \"solver\": \"wcsph\" or \"dfsph\"";
         throw SceneError(os.str());
       }
       if (!scene.number_density && ratio > kMassDensityRatioLimit) {
@@ -39,7 +39,7 @@ void check_fluid_ratios(const Scene& scene) {
         throw SceneError(os.str());
       }
       const double b_ratio = tait_b(heavy) / tait_b(light);
-      if (scene.number_density && b_ratio > kTaitRatioLimit) {
+      if (scene.solver == Solver::Wcsph && scene.number_density && b_ratio > kTaitRatioLimit) {
         const double c_min = std::sqrt(tait_b(heavy) / kTaitRatioLimit * 7.0 / light.rest_density);
         os << fluid_key(j) << ".speed_of_sound: " << light.speed_of_sound << " m/s makes Tait's B = rho0 c0^2 / 7 of "
            << fluid_key(j) << " " << b_ratio << " times smaller than that of " << fluid_key(i)

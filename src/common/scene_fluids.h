@@ -14,7 +14,8 @@ namespace sph {
 //   pressure must be about the same function of the number density on both sides of an interface: layers
 //   at density ratio 100 with one c0, B ratio 0.01, moved at 2.6 m/s; ratio 10 and ratio 1000 with the light
 //   fluid's c0 raised to B ratio 0.1 stayed below 0.1 m/s; docs/results.md);
-// - solvers "dfsph" and "pbf": one particle mass (their pressure solves have no number-density form yet).
+// - the Tait limit applies to WCSPH only (DFSPH has no equation of state); solver "pbf": one rest density
+//   (its constraint has no number-density form yet).
 void check_fluid_ratios(const Scene& scene);
 
 // Surface tension against the equation of state (WCSPH): the cohesion's internal pressure
