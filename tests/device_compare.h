@@ -143,6 +143,8 @@ class ProbedCpu final : public sph::Backend {
   std::string name() const override { return "cpu"; }
   void upload(const sph::ParticleState& s) override { cpu_.upload(s); }
   void set_boundary(const sph::BoundaryParticles& b) override { cpu_.set_boundary(b); }
+  void set_springs(const sph::SpringNetwork& s) override { cpu_.set_springs(s); }
+  sph::SpringNetwork download_springs() override { return cpu_.download_springs(); }
   void set_bodies(const std::vector<sph::RigidBody>& b) override { cpu_.set_bodies(b); }
   const std::vector<sph::RigidBody>& bodies() const override { return cpu_.bodies(); }
   void initialise_forces() override { cpu_.initialise_forces(); }
@@ -198,13 +200,16 @@ class ProbedCpu final : public sph::Backend {
 // Runs the phases of one step one at a time on the reference and on the device back end from the same
 // particles, and checks after each phase that every field agrees. Returns the reference's state after each
 // phase (step_phases(c.solver) order) for the callers' checks that the case exercises what it claims. Both
-// back ends get the boundary particles given (none by default).
+// back ends get the boundary particles and springs given (none by default).
 inline std::vector<sph::ParticleState> compare_phases(const sph::SimConstants& c, const sph::ParticleState& input, float dt,
-                                                      const sph::BoundaryParticles& boundary = sph::BoundaryParticles{}) {
+                                                      const sph::BoundaryParticles& boundary = sph::BoundaryParticles{},
+                                                      const sph::SpringNetwork& springs = sph::SpringNetwork{}) {
   sph::CpuBackend cpu(c);
   std::unique_ptr<sph::Backend> dev = sph::backend_factory(device_name())(c);
   cpu.set_boundary(boundary);
   dev->set_boundary(boundary);
+  cpu.set_springs(springs);
+  dev->set_springs(springs);
   cpu.upload(input);
   dev->upload(input);
   std::vector<sph::ParticleState> after;
@@ -226,8 +231,10 @@ inline std::vector<sph::ParticleState> compare_phases(const sph::SimConstants& c
 }
 
 // The reference's state after one step run phase by phase with other constants (a model switched off).
-inline sph::ParticleState reference_step(const sph::SimConstants& c, const sph::ParticleState& input, float dt) {
+inline sph::ParticleState reference_step(const sph::SimConstants& c, const sph::ParticleState& input, float dt,
+                                         const sph::SpringNetwork& springs = sph::SpringNetwork{}) {
   sph::CpuBackend cpu(c);
+  cpu.set_springs(springs);
   cpu.upload(input);
   cpu.step(dt);
   return cpu.download();

@@ -15,6 +15,7 @@
 
 #include "boundary_particles.h"
 #include "rigid_body.h"
+#include "springs.h"
 #include "params.h"
 #include "particle_state.h"
 
@@ -124,6 +125,10 @@ class Backend {
   // Replaces the rigid bodies (rigid_body.h; none by default): their particles and state. A WCSPH step moves
   // the free ones; bodies() gives their state now.
   virtual void set_bodies(const std::vector<RigidBody>& bodies) = 0;
+  // Replaces the viscoelastic springs (springs.h; none by default): a copy in the back end's memory, which
+  // the WCSPH forces phase updates (plasticity, breaking).
+  virtual void set_springs(const SpringNetwork& springs) = 0;
+  virtual SpringNetwork download_springs() = 0;  // their state now (rest lengths, broken ones)
   virtual const std::vector<RigidBody>& bodies() const = 0;
   virtual void initialise_forces() = 0;                   // accelerations of the uploaded state, no motion
   virtual void step(float dt) = 0;                        // the phases of step_phases(solver), in order

@@ -317,6 +317,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
   check_incompressible_step(scene, s.spacing);
   check_surface_tension(scene, s.h);
+  check_springs(scene);
   report_ignored_settings(scene, s.report);
   s.meshes = load_meshes(scene);
 
@@ -350,6 +351,10 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.cohesion = float(cohesion_from_surface_tension(f.surface_tension, f.rest_density, s.h));
     fc.xsph = float(f.xsph);
     fc.lifetime = 0.0f;
+    // Springs: k / m from the shear modulus (springs.h).
+    fc.spring_stiffness = float(spring_constant(f.spring_modulus, s.spacing, s.h) / double(fc.mass));
+    fc.spring_yield = float(f.spring_yield);
+    fc.spring_plasticity = float(f.spring_plasticity);
     if (f.near_stiffness > 0.0) c.near_enabled = 1;
     if (f.surface_tension > 0.0) c.surface_tension_enabled = 1;
     if (f.xsph > 0.0) c.xsph_enabled = 1;
@@ -458,6 +463,17 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     s.report.push_back(os.str());
   }
   sample_rigid_bodies(scene, c, s.spacing, particle_budget(scene), s.bodies, s.report);
+  try {
+    s.springs = create_springs(c, s.particles);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene.source + ": resolution.neighbours: " + e.what());
+  }
+  if (!s.springs.empty()) {
+    std::ostringstream os;
+    os << "springs: up to " << s.springs.capacity << " per particle of the elastic fluids ("
+       << (s.springs.bytes() >> 20) << " MiB)";
+    s.report.push_back(os.str());
+  }
   s.blowup_speed = fallback_blowup_speed(scene, s.max_speed_of_sound, s.jets);
 }
 

@@ -9,6 +9,7 @@
 
 #include "boundary_particles.h"
 #include "rigid_body.h"
+#include "springs.h"
 #include "emitters.h"
 #include "particle_state.h"
 #include "scene.h"
@@ -21,6 +22,7 @@ struct Setup {
   BoundaryParticles boundary;      // the walls' boundary particles (sph.walls = "particles"), else empty
   std::vector<MeshSolid> meshes;   // the scene's meshes, loaded, scaled and placed
   std::vector<RigidBody> bodies;   // the scene's rigid bodies at their start
+  SpringNetwork springs;           // the elastic fluids' springs at the start (springs.h), else empty
   std::vector<JetEmitter> jets;
   double spacing = 0.0;            // d
   double h = 0.0;                  // support radius

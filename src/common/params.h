@@ -99,6 +99,10 @@ struct FluidConstants {
   float cohesion;          // 8 sigma / (pi rho0^2 h^5 J4) [m/(kg s^2)], cohesion from sigma (guided_creation.h); 0 disables
   float xsph;              // XSPH epsilon; 0 disables
   float lifetime;          // particles older than this are recycled [s]; 0 = never
+  // Viscoelastic springs (springs.h, Clavet et al. 2005, thesis eq. 2.26); spring_stiffness 0: none.
+  float spring_stiffness;  // k / m [1/s^2], k from the fluid's shear modulus (springs.h, spring_constant)
+  float spring_yield;      // gamma: a spring deforms by up to gamma L before its rest length L yields
+  float spring_plasticity; // alpha [1/s]: how fast a yielded rest length follows the deformation
 };
 
 // Whether the recycle phase removes particle of this age and fluid: lifetime exceeded or absorbed.

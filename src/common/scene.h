@@ -29,6 +29,11 @@ struct FluidSpec {
   double near_stiffness = 0.0;     // k_near, m^2/s^2; 0 = no double density relaxation
   double surface_tension = 0.0;    // sigma [N/m], cohesion calibrated to it (guided_creation.h); 0 = off
   double xsph = 0.0;               // XSPH epsilon; 0 = off
+  // Viscoelastic springs between close particles at the start (springs.h): shear modulus G [Pa] of the
+  // spring network (0 = none), yield ratio gamma and plasticity alpha [1/s] (Clavet et al. 2005).
+  double spring_modulus = 0.0;
+  double spring_yield = 0.1;
+  double spring_plasticity = 0.0;
 };
 
 enum class EmitterType { Box, Sphere, Jet };

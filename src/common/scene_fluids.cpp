@@ -71,4 +71,36 @@ void check_surface_tension(const Scene& scene, double h) {
   }
 }
 
+void check_springs(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
+    const FluidSpec& f = scene.fluids[i];
+    if (!(f.spring_modulus > 0.0)) continue;
+    const std::string key = fluid_key(i) + ".spring_modulus";
+    std::ostringstream os;
+    os << scene.source << ": " << key << ": ";
+    if (scene.solver != Solver::Wcsph) {
+      os << "springs (a viscoelastic fluid) run with solver \"wcsph\" only, not \"" << solver_name(scene.solver) << "\"";
+      throw SceneError(os.str());
+    }
+    if (!scene.initial_state.empty()) {
+      os << "springs are made between the particles the emitters create at the start; an initial_state frame holds "
+            "no springs (leave one of the two out)";
+      throw SceneError(os.str());
+    }
+    for (std::size_t e = 0; e < scene.emitters.size(); ++e)
+      if (scene.emitters[e].type == EmitterType::Jet && scene.emitters[e].fluid == int(i)) {
+        os << "springs are made at the start, but emitters." << e << " (jet) creates " << fluid_key(i)
+           << " during the run: give the jet a fluid without springs";
+        throw SceneError(os.str());
+      }
+    const double limit = kElasticWaveLimit * kElasticWaveLimit * f.rest_density * f.speed_of_sound * f.speed_of_sound;
+    if (f.spring_modulus > limit) {
+      os << f.spring_modulus << " Pa makes elastic waves (sqrt(G / rho0) = " << std::sqrt(f.spring_modulus / f.rest_density)
+         << " m/s) faster than " << kElasticWaveLimit << " x " << fluid_key(i) << ".speed_of_sound; allowed: at most "
+         << limit << " Pa at this speed of sound (or raise the speed of sound)";
+      throw SceneError(os.str());
+    }
+  }
+}
+
 }  // namespace sph

@@ -25,6 +25,13 @@ void check_fluid_ratios(const Scene& scene);
 // sigma = 4 N/m and c0 = 5 m/s (compression 10%) flew apart.
 void check_surface_tension(const Scene& scene, double h);
 
+// Springs (springs.h) only where they can be kept: under WCSPH (the incompressible solvers' steps are too long
+// for them), on fluids created at the start (not by jets, not from an initial_state frame, which holds no
+// springs), and with an elastic wave speed sqrt(G / rho0) at most kElasticWaveLimit c0, so that the sound
+// speed's time step also resolves the springs. SceneError naming the key otherwise.
+void check_springs(const Scene& scene);
+
+constexpr double kElasticWaveLimit = 0.5;
 constexpr double kCohesionCompressionLimit = 0.03;
 constexpr double kMassDensityRatioLimit = 1.25;
 constexpr double kTaitRatioLimit = 10.0;

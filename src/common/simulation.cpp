@@ -47,6 +47,7 @@ Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double
     : scene_(scene), setup_(create_setup(scene, run_time)), backend_(factory(setup_.constants)) {
   backend_->set_boundary(setup_.boundary);
   backend_->set_bodies(setup_.bodies);
+  backend_->set_springs(setup_.springs);
   if (restart) {
     continue_from(*restart);
   } else {
@@ -235,6 +236,7 @@ void Simulation::switch_backend(const BackendFactory& factory) {
   std::unique_ptr<Backend> next = factory(setup_.constants);
   next->set_boundary(setup_.boundary);
   next->set_bodies(backend_->bodies());
+  next->set_springs(backend_->download_springs());
   next->upload(state);
   next->initialise_forces();
   backend_ = std::move(next);

@@ -18,6 +18,9 @@ void Simulation::continue_from(const Frame& frame) {
   };
   if (!setup_.bodies.empty())
     refuse("the scene has rigid bodies (\"bodies\"), whose state the frames do not hold; run it from the start");
+  if (!setup_.springs.empty())
+    refuse("the scene has viscoelastic springs (fluids' spring_modulus), whose rest lengths the frames do not hold; "
+           "run it from the start");
   if (info.scene != scene_.name)
     refuse("it was written by the scene \"" + info.scene + "\", not \"" + scene_.name +
            "\" (to start another scene from a frame, use the scene key initial_state)");

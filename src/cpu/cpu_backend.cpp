@@ -37,6 +37,7 @@ struct CpuBackend::Exec {
   const SimConstants& host_constants() const { return b.c_; }
   ParticleView particles() { return b.s_.view(); }
   GridView grid() const { return b.grid_view(); }
+  SpringView springs() { return b.springs_.view(); }
   template <class F>
   void for_each(const F& f) {
     const int32_t n = int32_t(b.s_.size());

@@ -18,6 +18,8 @@ class CpuBackend final : public Backend {
   std::string name() const override { return "cpu"; }
   void upload(const ParticleState& state) override { s_ = state; }
   void set_boundary(const BoundaryParticles& boundary) override { boundary_ = boundary; }
+  void set_springs(const SpringNetwork& springs) override { springs_ = springs; }
+  SpringNetwork download_springs() override { return springs_; }
   void set_bodies(const std::vector<RigidBody>& bodies) override {
     bodies_ = bodies;
     upload_bodies();
@@ -70,6 +72,7 @@ class CpuBackend final : public Backend {
   ParticleState s_;
   ParticleState sorted_;              // reorder target, swapped with s_
   BoundaryParticles boundary_;        // static; read in place
+  SpringNetwork springs_;             // by particle id; updated in place
   std::vector<RigidBody> bodies_;     // their particles read in place
   std::vector<BodyView> body_views_;
   // The grid (grid_build.h): sorted keys, block of each particle, blocks' first particles and codes, cell

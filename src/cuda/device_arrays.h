@@ -7,6 +7,7 @@
 #include <thrust/execution_policy.h>
 
 #include "../common/boundary_particles.h"
+#include "../common/springs.h"
 #include "../common/particle_state.h"
 #include "../common/particle_view.h"
 #include "../common/sph_hd.h"
@@ -226,6 +227,36 @@ struct DeviceBoundary {
     v.solid = thrust::raw_pointer_cast(solid.data());
     v.cell_start = thrust::raw_pointer_cast(cell_start.data());
     return v;
+  }
+};
+
+// The viscoelastic springs (springs.h) in device memory, by particle id.
+struct DeviceSprings {
+  int32_t capacity = 0;
+  DeviceVector<int32_t> partner;
+  DeviceVector<float> rest;
+  DeviceVector<int32_t> index_of_id;
+
+  void upload(const SpringNetwork& s) {
+    capacity = s.capacity;
+    partner.assign(s.partner.begin(), s.partner.end());
+    rest.assign(s.rest.begin(), s.rest.end());
+    index_of_id.assign(s.index_of_id.begin(), s.index_of_id.end());
+  }
+  SpringNetwork download() const {
+    SpringNetwork s;
+    s.capacity = capacity;
+    s.partner.resize(partner.size());
+    s.rest.resize(rest.size());
+    s.index_of_id.resize(index_of_id.size());
+    thrust::copy(partner.begin(), partner.end(), s.partner.begin());
+    thrust::copy(rest.begin(), rest.end(), s.rest.begin());
+    thrust::copy(index_of_id.begin(), index_of_id.end(), s.index_of_id.begin());
+    return s;
+  }
+  SpringView view() {
+    return SpringView{capacity, int32_t(index_of_id.size()), thrust::raw_pointer_cast(partner.data()),
+                      thrust::raw_pointer_cast(rest.data()), thrust::raw_pointer_cast(index_of_id.data())};
   }
 };
 

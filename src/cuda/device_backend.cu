@@ -145,6 +145,16 @@ class DeviceBackend final : public Backend {
     settle();
     run_phase(name_, "boundary upload", [&] { boundary_.upload(b); });
   }
+  void set_springs(const SpringNetwork& springs) override {
+    settle();
+    run_phase(name_, "springs upload", [&] { springs_.upload(springs); });
+  }
+  SpringNetwork download_springs() override {
+    await_step();
+    SpringNetwork s;
+    run_phase(name_, "springs download", [&] { s = springs_.download(); });
+    return s;
+  }
   void set_bodies(const std::vector<RigidBody>& bodies) override {
     settle();
     run_phase(name_, "bodies upload", [&] {
@@ -366,6 +376,7 @@ class DeviceBackend final : public Backend {
     const SimConstants& host_constants() const { return b.c_; }
     ParticleView particles() { return b.d_.view(); }
     GridView grid() const { return b.grid_view(); }
+    SpringView springs() { return b.springs_.view(); }
     template <class F>
     void for_each(const F& f) {
       launch(b.n(), f);
@@ -458,6 +469,7 @@ class DeviceBackend final : public Backend {
   QuietTemporaryAllocator temporary_;
   DeviceGrid grid_;
   DeviceBoundary boundary_;  // static boundary particles (sph.walls = "particles")
+  DeviceSprings springs_;    // viscoelastic springs (springs.h), by particle id
   std::vector<RigidBody> bodies_;             // the rigid bodies' host state
   std::vector<DeviceBoundary> body_locals_;   // their particles in device memory
   DeviceVector<BodyView> body_views_;         // their views this step

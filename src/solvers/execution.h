@@ -14,6 +14,7 @@
 //                                            its loops (density method, force model, shapes present)
 //   ParticleView particles();                the particle arrays (particle_view.h) in the current order
 //   GridView grid();                         the grid of the last build_grid()
+//   SpringView springs();                    the viscoelastic springs (springs.h), capacity 0 without
 //   void for_each(const F& f);               f(i) for every particle i, in any order or in parallel: f may
 //                                            write only particle i's fields
 //   double sum(int32_t n, const F& f);       f(0) + ... + f(n - 1) in reduction.h's fixed order (the same bits

@@ -18,6 +18,7 @@
 #include "../common/particle_view.h"
 #include "../common/pressure.h"
 #include "../common/sph_hd.h"
+#include "../common/springs.h"
 #include "rigid_bodies.h"
 
 namespace sph {
@@ -85,6 +86,24 @@ struct BoundariesFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { boundaries_of(*c, p, i, dt); }
 };
 
+// Viscoelastic springs (springs.h): each particle's place under its id after the grid's reorder, then each
+// particle's spring forces added to its acceleration (with its springs' plasticity and breaking).
+struct IndexParticleFn {
+  SpringView s;
+  ParticleView p;
+  SPH_HD void operator()(int32_t i) const { index_particle(s, p, i); }
+};
+template <class C>
+struct SpringForcesFn {
+  C c;
+  SpringView s;
+  ParticleView p;
+  float dt;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) p.acc[i] += spring_acceleration(*c, s, p, i, dt);
+  }
+};
+
 // Before the first forces: the forces see the integrator's velocity.
 struct CopyVelocityFn {
   ParticleView p;
@@ -113,6 +132,10 @@ void run_phase(Exec& x, Phase p, float dt) {
         x.for_each(ForcesFn<C, decltype(model)>{x.constants(), x.grid(), x.particles()});
         if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, decltype(model)>{x.constants(), x.grid(), x.particles()});
       });
+      if (x.springs().capacity > 0) {
+        x.for_each(IndexParticleFn{x.springs(), x.particles()});
+        x.for_each(SpringForcesFn<C>{x.constants(), x.springs(), x.particles(), dt});
+      }
       update_bodies(x, dt);  // rigid bodies: the reaction to these forces moves them (rigid_bodies.h)
       return;
     case Phase::Correct: x.for_each(CorrectFn<C>{x.constants(), x.particles(), dt}); return;

@@ -1,0 +1,99 @@
+// Viscoelastic fluids (issue 15): springs between close particles of an elastic fluid, created once at the
+// start with their distance as rest length (Clavet, Beaudoin & Poulin 2005, section 5; thesis 2.2.6, eq.
+// 2.26). A spring of stiffness k pulls its two particles with -k (r - L) along x_ab, equal and opposite; its
+// rest length L yields when stretched or squeezed beyond gamma L: L += dt alpha sign(r - L) (|r - L| - gamma L)
+// (Clavet's plasticity, so that a deformation held long enough is kept: the fluid flows, viscoelastically); a
+// spring whose rest length grows past h breaks. alpha = 0 is an elastic jelly.
+//
+// Storage is by particle id, so that the grid's reorder never moves it: each id has `capacity` slots of
+// (partner id, rest length), both ends of a spring holding it with the same rest length (their updates are
+// the same arithmetic on the same |x_ab|, so they stay equal). index_of_id maps an id to the particle's
+// place in the current order; the solver rebuilds it after each grid build (index_particle).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "params.h"
+#include "particle_state.h"
+#include "particle_view.h"
+
+namespace sph {
+
+// The springs as the loops see them (arrays in the back end's memory).
+struct SpringView {
+  int32_t capacity;      // slots per id; 0: no springs
+  int32_t num_ids;       // ids below this may have springs (the particles present at the start)
+  int32_t* partner;      // num_ids x capacity: the partner's id, or -1 (none or broken)
+  float* rest;           // num_ids x capacity: rest length L [m]
+  int32_t* index_of_id;  // num_ids: the particle's index in the current order
+};
+
+// The springs on the host (set-up, the serial reference's storage).
+struct SpringNetwork {
+  int32_t capacity = 0;
+  std::vector<int32_t> partner;
+  std::vector<float> rest;
+  std::vector<int32_t> index_of_id;
+  bool empty() const { return capacity == 0; }
+  std::size_t bytes() const { return partner.size() * 8 + index_of_id.size() * 4; }
+  SpringView view() {
+    return SpringView{capacity, int32_t(index_of_id.size()), partner.data(), rest.data(), index_of_id.data()};
+  }
+};
+
+// The most springs one particle may hold: at the default 32 neighbours a lattice particle has 26 within h.
+constexpr int32_t kMaxSpringsPerParticle = 64;
+
+// A spring's stiffness k [N/m] for a network of shear modulus G [Pa] on a cubic lattice of spacing d with
+// support h: under a uniform strain a bond of length r stretches by r eps cos^2(theta), and averaged over
+// directions (cos^4 -> 1/5) a central-force network stores sum_b k r_b^2 eps^2 / 20 per particle volume d^3:
+// C11 = sum_b k r_b^2 / (10 d^3), and with Cauchy's relation (lambda = mu) mu = C11 / 3. So
+// k = 30 G d^3 / sum_b r_b^2 over a lattice particle's bonds within h.
+double spring_constant(double modulus, double spacing, double h);
+
+// Springs between every two particles of one fluid with spring_stiffness > 0 closer than h, with their
+// distance as rest length. Empty when no fluid has springs. Throws std::invalid_argument when a particle
+// would hold more than kMaxSpringsPerParticle springs. ps: the particles at the start (ids 0..n-1).
+SpringNetwork create_springs(const SimConstants& c, const ParticleState& ps);
+
+// After a grid build: particle i's place under its id.
+SPH_HD inline void index_particle(const SpringView& s, const ParticleView& p, int32_t i) {
+  const int32_t id = p.id[i];
+  if (id >= 0 && id < s.num_ids) s.index_of_id[id] = i;
+}
+
+// Particle i's acceleration from its springs this step [m/s^2], with the plasticity and breaking of its own
+// copies of them (dt [s]). A partner that has left the simulation breaks its spring.
+SPH_HD inline Vec3 spring_acceleration(const SimConstants& c, const SpringView& s, const ParticleView& p, int32_t i,
+                                       float dt) {
+  Vec3 acc{0.0f, 0.0f, 0.0f};
+  const int32_t id = p.id[i];
+  const FluidConstants& f = c.fluids[p.fluid[i]];
+  if (id < 0 || id >= s.num_ids || f.spring_stiffness == 0.0f) return acc;
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  for (int32_t slot = id * s.capacity, end = slot + s.capacity; slot < end; ++slot) {
+    const int32_t partner = s.partner[slot];
+    if (partner < 0) continue;
+    const int32_t j = s.index_of_id[partner];
+    if (j < 0 || j >= p.n || p.id[j] != partner) {
+      s.partner[slot] = -1;
+      continue;
+    }
+    const Vec3 xij = xi - xyz(p.pos_mass[j]);
+    const float r = sqrtf(dot(xij, xij));
+    float rest = s.rest[slot];
+    const float tolerated = f.spring_yield * rest;  // Clavet's plasticity (above)
+    if (r > rest + tolerated) rest += dt * f.spring_plasticity * (r - rest - tolerated);
+    else if (r < rest - tolerated) rest -= dt * f.spring_plasticity * (rest - tolerated - r);
+    if (rest > c.kernel.h || !(r > 0.0f)) {
+      s.partner[slot] = -1;
+      continue;
+    }
+    s.rest[slot] = rest;
+    acc -= (f.spring_stiffness * (r - rest) / r) * xij;
+  }
+  return acc;
+}
+
+}  // namespace sph

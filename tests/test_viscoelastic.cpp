@@ -1,0 +1,155 @@
+// Viscoelastic fluids (issue 15): springs between close particles of a fluid made at the start (Clavet et al.
+// 2005, thesis eq. 2.26; src/common/springs.h). A jelly cube dropped on the floor rebounds and keeps its shape
+// while a water cube of the same viscosity beside it splashes (scenes/viscoelastic.json); with plasticity
+// the springs yield and the jelly slumps; the spring forces conserve momentum; and springs where they cannot
+// be kept are refused by name.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "common/springs.h"
+#include "physics_helpers.h"
+
+using namespace sph_test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+struct FallRun {
+  double start[2] = {0, 0};    // centre-of-mass height of each fluid at the start [m]
+  double lowest[2] = {1e9, 1e9};  // its first minimum after the fall [m]
+  double rebound[2] = {0, 0};  // how far it rose after that minimum [m]
+  double width_end[2] = {0, 0};  // its extent along x at the end [m]
+  double top_end[2] = {0, 0};    // its 98th percentile height at the end [m]
+};
+
+FallRun run_fall(const std::vector<std::string>& overrides, double seconds) {
+  sph::Simulation sim(scene_file("viscoelastic.json", overrides), cpu_factory(), seconds);
+  FallRun out;
+  auto centre = [&](int f) {
+    const sph::ParticleState& ps = sim.particles();
+    double y = 0.0;
+    long n = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (ps.fluid[i] == f) {
+        y += ps.pos[i].y;
+        ++n;
+      }
+    return y / double(n);
+  };
+  bool fell[2] = {false, false};
+  for (int f = 0; f < 2; ++f) out.start[f] = centre(f);
+  while (sim.time() < seconds) {
+    sim.advance();
+    for (int f = 0; f < 2; ++f) {
+      const double y = centre(f);
+      if (!fell[f]) {
+        if (y < out.lowest[f]) out.lowest[f] = y;
+        else if (y > out.lowest[f] + 1e-4) fell[f] = true;  // past its first minimum
+      }
+      if (fell[f]) out.rebound[f] = std::max(out.rebound[f], y - out.lowest[f]);
+    }
+  }
+  const sph::ParticleState& ps = sim.particles();
+  for (int f = 0; f < 2; ++f) {
+    std::vector<double> x, y;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (ps.fluid[i] == f) {
+        x.push_back(ps.pos[i].x);
+        y.push_back(ps.pos[i].y);
+      }
+    std::sort(y.begin(), y.end());
+    out.width_end[f] = *std::max_element(x.begin(), x.end()) - *std::min_element(x.begin(), x.end());
+    out.top_end[f] = y[std::size_t(0.98 * double(y.size() - 1))];
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a jelly cube rebounds from the floor where a water cube of the same viscosity splashes", "[viscoelastic]") {
+  const FallRun r = run_fall({}, 0.4);
+  const double fall_jelly = r.start[0] - r.lowest[0], fall_water = r.start[1] - r.lowest[1];
+  INFO("jelly: centre " << r.start[0] << " -> " << r.lowest[0] << " m, rebound " << r.rebound[0] << " m, width at the end "
+                        << r.width_end[0] << " m; water: centre " << r.start[1] << " -> " << r.lowest[1] << " m, rebound "
+                        << r.rebound[1] << " m, width " << r.width_end[1] << " m");
+  CHECK(r.rebound[0] > 0.25 * fall_jelly);  // measured 0.5: it bounces
+  CHECK(r.rebound[1] < 0.15 * fall_water);  // splashing up the walls lifts the water's centre a little
+  CHECK(r.width_end[0] < 1.25 * 0.054);     // the jelly keeps its shape (a 0.054 m lattice cube)
+  CHECK(r.width_end[1] > 3.0 * 0.054);      // the water spreads across the tank
+}
+
+TEST_CASE("springs that yield let the jelly slump", "[viscoelastic]") {
+  // A softer jelly (3 kPa: its weight strains it by about 20%), elastic and with springs that yield beyond 2%.
+  const FallRun elastic = run_fall({"fluids.0.spring_modulus=3000", "fluids.0.spring_yield=0.02"}, 0.6);
+  const FallRun plastic = run_fall({"fluids.0.spring_modulus=3000", "fluids.0.spring_yield=0.02",
+                                    "fluids.0.spring_plasticity=20"}, 0.6);
+  INFO("jelly's top at 0.6 s: elastic " << elastic.top_end[0] << " m, plastic " << plastic.top_end[0] << " m; widths "
+                                        << elastic.width_end[0] << " and " << plastic.width_end[0] << " m");
+  CHECK(plastic.top_end[0] < elastic.top_end[0] - 0.005);
+  CHECK(plastic.width_end[0] > elastic.width_end[0]);
+}
+
+TEST_CASE("spring forces conserve momentum", "[viscoelastic][conservation]") {
+  sph::Scene scene = scene_file("viscoelastic.json", {"gravity=[0,0,0]", "fluids.0.artificial_viscosity=0",
+                                                      "fluids.0.viscosity=0", "fluids.1.artificial_viscosity=0",
+                                                      "fluids.1.viscosity=0"});
+  scene.boundaries.clear();
+  const sph::Setup setup = sph::create_setup(scene, 1.0);
+  REQUIRE(setup.springs.capacity > 0);
+  sph::CpuBackend cpu(setup.constants);
+  cpu.set_springs(setup.springs);
+  sph::ParticleState ps = setup.particles;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < ps.size(); ++i) ps.vel[i] = sph::Vec3{0.3f * u(rng), 0.3f * u(rng), 0.3f * u(rng)};
+  cpu.upload(ps);
+  cpu.initialise_forces();
+  auto momentum = [&](double& scale) {
+    const sph::ParticleState& s = cpu.download();
+    double p[3] = {0, 0, 0};
+    scale = 0.0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const double m = setup.constants.fluids[s.fluid[i]].mass;
+      p[0] += m * s.vel[i].x;
+      p[1] += m * s.vel[i].y;
+      p[2] += m * s.vel[i].z;
+      scale += m * sph::length(s.vel[i]);
+    }
+    return std::vector<double>{p[0], p[1], p[2]};
+  };
+  double scale0 = 0.0, scale1 = 0.0;
+  const std::vector<double> p0 = momentum(scale0);
+  for (int step = 0; step < 300; ++step) cpu.step(2e-4f);
+  const std::vector<double> p1 = momentum(scale1);
+  // The springs did work: some broke or stretched (the jelly's rest lengths are compared after the run).
+  const sph::SpringNetwork after = cpu.download_springs();
+  double stretched = 0.0;
+  for (std::size_t k = 0; k < after.rest.size(); ++k)
+    if (after.partner[k] >= 0) stretched = std::max(stretched, double(std::fabs(after.rest[k] - setup.springs.rest[k])));
+  INFO("momentum " << p0[0] << ", " << p0[1] << ", " << p0[2] << " -> " << p1[0] << ", " << p1[1] << ", " << p1[2]);
+  for (int k = 0; k < 3; ++k) CHECK(std::fabs(p1[k] - p0[k]) < 1e-4 * scale0);
+  CHECK(stretched == 0.0);  // plasticity 0: rest lengths never change
+}
+
+TEST_CASE("springs where they cannot be kept are refused by name", "[viscoelastic][scene]") {
+  CHECK_THROWS_WITH(sph::create_setup(scene_file("viscoelastic.json", {"solver=dfsph"}), 1.0),
+                    Contains("fluids.0.spring_modulus") && Contains("wcsph"));
+  CHECK_THROWS_WITH(sph::create_setup(scene_file("viscoelastic.json", {"fluids.0.spring_modulus=2e5"}), 1.0),
+                    Contains("fluids.0.spring_modulus") && Contains("at most 100000"));
+  CHECK_THROWS_WITH(scene_file("viscoelastic.json", {"fluids.0.spring_modulus=-1"}), Contains("fluids.0.spring_modulus"));
+  CHECK_THROWS_WITH(scene_file("viscoelastic.json", {"fluids.0.spring_yield=-0.1"}), Contains("fluids.0.spring_yield"));
+  // The springs' calibration: k sum_b r_b^2 / (30 d^3) is the shear modulus asked.
+  const double d = 0.01, h = 0.0197, g = 2e4;
+  double sum = 0.0;
+  for (int k = -2; k <= 2; ++k)
+    for (int j = -2; j <= 2; ++j)
+      for (int i = -2; i <= 2; ++i) {
+        const double r2 = (i * i + j * j + k * k) * d * d;
+        if (r2 > 0.0 && r2 < h * h) sum += r2;
+      }
+  CHECK(sph::spring_constant(g, d, h) * sum / (30.0 * d * d * d) == Approx(g));
+}
