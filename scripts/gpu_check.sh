@@ -223,6 +223,11 @@ run() {
     step "frames host = cuda: cup mesh, DFSPH" 60 frames_match mesh_dfsph mesh_obstacle.json --time 0.05 --frames-every 0.01 --set solver=dfsph
     step "frames host = cuda: tank, PBF at 4 ms" 60 frames_match tank_pbf hydrostatic_tank.json --time 0.2 --frames-every 0.04 \
          --set solver=pbf --set time_step.mode=fixed --set time_step.dt=0.004
+    step "frames host = cuda: two layers (ratio 10), DFSPH" 60 frames_match layers_dfsph two_layers.json --time 0.05 --frames-every 0.01 \
+         --set solver=dfsph
+    step "frames host = cuda: drop with surface tension" 60 frames_match drop_sigma drop_oscillation.json --time 0.05 --frames-every 0.01
+    step "frames host = cuda: jelly springs and water" 60 frames_match jelly viscoelastic.json --time 0.15 --frames-every 0.03 \
+         --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02
     if command -v compute-sanitizer >/dev/null; then
       step "compute-sanitizer memcheck (20 steps)" 90 memcheck
     else
@@ -239,7 +244,7 @@ run() {
   else
     local s
     for s in "device tests, cuda, bitwise (--fmad=false)" "device tests, cuda, default build (1e-5)" \
-             "frames host = cuda (10 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
+             "frames host = cuda (13 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
              "interop probe: cuda writes GL buffers (EGL)"; do
       skip "$s" "no GPU"
     done

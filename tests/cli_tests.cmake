@@ -513,3 +513,20 @@ if(SPH_WITH_OPENVDB)
     --exit 1 --stderr "--resolution" --stderr "[1, 8]"
     -- ${SPH_SURFACE} ${SPH_CLI_DATA} --resolution 0)
 endif()
+
+# --- several fluids, surface tension, springs (issue 15): limits refused by key, exit 1 -----------------
+sph_cli_test(multiphase_mass_density_refused
+  --exit 1 --stderr "sph.multiphase" --stderr "1.25" --stderr "number_density"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/two_layers.json --set sph.multiphase=mass_density --out ${SPH_CLI_OUT}/multiphase_mass)
+sph_cli_test(multiphase_soft_light_fluid
+  --exit 1 --stderr "fluids.1.speed_of_sound" --stderr "at least 150"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/two_layers.json --set fluids.1.rest_density=1 --out ${SPH_CLI_OUT}/multiphase_soft)
+sph_cli_test(surface_tension_too_soft
+  --exit 1 --stderr "fluids.0.speed_of_sound" --stderr "surface_tension" --stderr "at least"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/drop_oscillation.json --set fluids.0.speed_of_sound=5 --out ${SPH_CLI_OUT}/sigma_soft)
+sph_cli_test(springs_dfsph_refused
+  --exit 1 --stderr "fluids.0.spring_modulus" --stderr "wcsph"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=dfsph --out ${SPH_CLI_OUT}/springs_dfsph)
+sph_cli_test(viscoelastic_short_run
+  --exit 0 --stdout "springs: up to 26 per particle" --file ${SPH_CLI_OUT}/viscoelastic_run/metrics.csv
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --time 0.02 --quiet --out ${SPH_CLI_OUT}/viscoelastic_run)

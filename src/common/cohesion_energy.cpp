@@ -27,7 +27,8 @@ double akinci_cohesion_potential_shape(double q) {
 
 std::vector<double> cohesion_excess_energy(const SimConstants& c, const ParticleState& ps, double spacing) {
   std::vector<double> excess(ps.size(), 0.0);
-  if (!c.surface_tension_enabled || ps.size() == 0) return excess;
+  // PBF has no cohesion (it ignores surface_tension, said at set-up): nothing to release.
+  if (!c.surface_tension_enabled || c.solver == Solver::Pbf || ps.size() == 0) return excess;
   const double h = c.kernel.h;
   // A particle's share in the bulk: half the sum over a full cubic lattice of spacing d, per unit mass^2.
   const long n = long(std::ceil(h / spacing));

@@ -32,7 +32,7 @@ void check_fluid_ratios(const Scene& scene) {
         throw SceneError(os.str());
       }
       if (!scene.number_density && ratio > kMassDensityRatioLimit) {
-        os << "sph.multiphase: \"mass_density\" holds touching fluids whose rest densities differ by at most a factor "
+        os << "sph.multiphase: \"mass_density\" holds fluids (all those of a scene) whose rest densities differ by at most a factor "
            << kMassDensityRatioLimit << ", but " << fluid_key(i) << " and " << fluid_key(j) << " differ by " << ratio
            << " (" << heavy.rest_density << " and " << light.rest_density
            << " kg/m^3): use \"multiphase\": \"number_density\" (allowed: number_density, mass_density)";
@@ -43,7 +43,7 @@ void check_fluid_ratios(const Scene& scene) {
         const double c_min = std::sqrt(tait_b(heavy) / kTaitRatioLimit * 7.0 / light.rest_density);
         os << fluid_key(j) << ".speed_of_sound: " << light.speed_of_sound << " m/s makes Tait's B = rho0 c0^2 / 7 of "
            << fluid_key(j) << " " << b_ratio << " times smaller than that of " << fluid_key(i)
-           << "; touching fluids may differ by at most " << kTaitRatioLimit << " (at the interface each side's pressure "
+           << "; the fluids of a scene may differ by at most " << kTaitRatioLimit << " (at the interface each side's pressure "
            << "must follow about the same law), so give " << fluid_key(j) << " a speed of sound of at least " << c_min
            << " m/s (the time step shrinks in proportion)";
         throw SceneError(os.str());
