@@ -1,9 +1,9 @@
 #include "cohesion_energy.h"
 
-#include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+
+#include "host_neighbours.h"
 
 namespace sph {
 
@@ -39,36 +39,15 @@ std::vector<double> cohesion_excess_energy(const SimConstants& c, const Particle
         const double r = spacing * std::sqrt(double(i * i + j * j + k * k));
         if (r > 0.0 && r < h) lattice += akinci_cohesion_potential_shape(r / h);
       }
-  // Cells of h: a particle's neighbours lie in the 27 cells around its own.
-  auto cell_of = [h](const Vec3& x) {
-    return std::array<int64_t, 3>{int64_t(std::floor(x.x / h)), int64_t(std::floor(x.y / h)), int64_t(std::floor(x.z / h))};
-  };
-  auto key = [](int64_t i, int64_t j, int64_t k) {
-    return (uint64_t(i) & 0x1FFFFF) | ((uint64_t(j) & 0x1FFFFF) << 21) | ((uint64_t(k) & 0x1FFFFF) << 42);
-  };
-  std::unordered_map<uint64_t, std::vector<uint32_t>> cells;
-  for (std::size_t a = 0; a < ps.size(); ++a) {
-    if (ps.age[a] >= kRemovedAge) continue;
-    const auto ca = cell_of(ps.pos[a]);
-    cells[key(ca[0], ca[1], ca[2])].push_back(uint32_t(a));
-  }
+  const HostNeighbours neighbours(ps, h, [&](std::size_t a) { return ps.age[a] < kRemovedAge; });
   for (std::size_t a = 0; a < ps.size(); ++a) {
     const FluidConstants& f = c.fluids[ps.fluid[a]];
     if (f.cohesion == 0.0f || ps.age[a] >= kRemovedAge) continue;
-    const auto ca = cell_of(ps.pos[a]);
-    double sum = 0.0;  // sum_b m_b int_{r/h}^1 c over a's fluid
-    for (int64_t dk = -1; dk <= 1; ++dk)
-      for (int64_t dj = -1; dj <= 1; ++dj)
-        for (int64_t di = -1; di <= 1; ++di) {
-          const auto it = cells.find(key(ca[0] + di, ca[1] + dj, ca[2] + dk));
-          if (it == cells.end()) continue;
-          for (const uint32_t b : it->second) {
-            if (b == a || ps.fluid[b] != ps.fluid[a]) continue;
-            const Vec3 x = ps.pos[a] - ps.pos[b];
-            const double r = std::sqrt(double(x.x) * x.x + double(x.y) * x.y + double(x.z) * x.z);
-            if (r < h) sum += akinci_cohesion_potential_shape(r / h);
-          }
-        }
+    double sum = 0.0;  // sum_b int_{r/h}^1 c over a's fluid
+    neighbours.for_each_same_fluid(a, [&](std::size_t, Vec3 x) {
+      const double r = std::sqrt(double(x.x) * x.x + double(x.y) * x.y + double(x.z) * x.z);
+      if (r < h) sum += akinci_cohesion_potential_shape(r / h);
+    });
     // (e_a - e_bulk) / m_a = 1/2 m (-constant h) (sum - lattice): u / (m_a m_b) = -constant h int_{r/h}^1 c,
     // the fluid's cohesion constant being gamma 32 / (pi h^3), and the neighbours have a's mass (one fluid).
     const double e = 0.5 * double(f.mass) * (-double(f.cohesion) * h) * (sum - lattice);

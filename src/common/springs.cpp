@@ -1,11 +1,11 @@
 #include "springs.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
+
+#include "host_neighbours.h"
 
 namespace sph {
 
@@ -27,40 +27,19 @@ SpringNetwork create_springs(const SimConstants& c, const ParticleState& ps) {
   for (int32_t f = 0; f < c.num_fluids; ++f) any = any || c.fluids[f].spring_stiffness > 0.0f;
   if (!any || ps.size() == 0) return net;
   const double h = c.kernel.h;
-  // Cells of h: a particle's partners lie in the 27 cells around its own.
-  auto cell = [h](const Vec3& x) {
-    return std::array<int64_t, 3>{int64_t(std::floor(x.x / h)), int64_t(std::floor(x.y / h)), int64_t(std::floor(x.z / h))};
-  };
-  auto key = [](int64_t i, int64_t j, int64_t k) {
-    return (uint64_t(i) & 0x1FFFFF) | ((uint64_t(j) & 0x1FFFFF) << 21) | ((uint64_t(k) & 0x1FFFFF) << 42);
-  };
-  std::unordered_map<uint64_t, std::vector<uint32_t>> cells;
   int32_t num_ids = 0;
-  for (std::size_t a = 0; a < ps.size(); ++a) {
-    num_ids = std::max(num_ids, ps.id[a] + 1);
-    if (c.fluids[ps.fluid[a]].spring_stiffness > 0.0f) {
-      const auto ca = cell(ps.pos[a]);
-      cells[key(ca[0], ca[1], ca[2])].push_back(uint32_t(a));
-    }
-  }
+  for (std::size_t a = 0; a < ps.size(); ++a) num_ids = std::max(num_ids, ps.id[a] + 1);
+  const auto elastic = [&](std::size_t a) { return c.fluids[ps.fluid[a]].spring_stiffness > 0.0f; };
+  const HostNeighbours neighbours(ps, h, elastic);
   // Each particle's partners (same fluid, closer than h), in the order of their ids.
   std::vector<std::vector<std::pair<int32_t, float>>> springs(ps.size());
   std::size_t most = 0;
   for (std::size_t a = 0; a < ps.size(); ++a) {
-    if (!(c.fluids[ps.fluid[a]].spring_stiffness > 0.0f)) continue;
-    const auto ca = cell(ps.pos[a]);
-    for (int64_t dk = -1; dk <= 1; ++dk)
-      for (int64_t dj = -1; dj <= 1; ++dj)
-        for (int64_t di = -1; di <= 1; ++di) {
-          const auto it = cells.find(key(ca[0] + di, ca[1] + dj, ca[2] + dk));
-          if (it == cells.end()) continue;
-          for (const uint32_t b : it->second) {
-            if (b == a || ps.fluid[b] != ps.fluid[a]) continue;
-            const Vec3 x = ps.pos[a] - ps.pos[b];
-            const float r = sqrtf(dot(x, x));  // as spring_acceleration measures it
-            if (r < float(h) && r > 0.0f) springs[a].push_back({ps.id[b], r});
-          }
-        }
+    if (!elastic(a)) continue;
+    neighbours.for_each_same_fluid(a, [&](std::size_t b, Vec3 x) {
+      const float r = sqrtf(dot(x, x));  // as spring_acceleration measures it
+      if (r < float(h) && r > 0.0f) springs[a].push_back({ps.id[b], r});
+    });
     std::sort(springs[a].begin(), springs[a].end());
     most = std::max(most, springs[a].size());
   }
