@@ -153,3 +153,70 @@ TEST_CASE("a fluid too soft for its surface tension is refused with the least sp
                     Contains("fluids.0.speed_of_sound") && Contains("at least") && Contains("surface_tension"));
   CHECK_THROWS_WITH(scene_file("drop_oscillation.json", {"fluids.0.surface_tension=-1"}), Contains("fluids.0.surface_tension"));
 }
+
+namespace {
+
+// The l = 2 deformation <x^2> - (<y^2> + <z^2>) / 2 [m^2] of the particles within 1.5 R of the centre of mass
+// of those within 2 R of the start's centre (a particle flung off does not count), sampled every step.
+struct Ringing {
+  std::vector<double> t, q2;
+  double radius = 0.0;  // volume-equivalent [m]
+};
+
+Ringing ring(const std::string& model, double seconds) {
+  // A box of the cube's volume, 0.11 x 0.1 x 0.091 m, longer along x: it rings in the l = 2 mode (amplitude ~10%).
+  const sph::Scene scene = scene_file("drop_oscillation.json", {"sph.surface_tension=" + model, "emitters.0.min=[-0.055,-0.05,-0.04545]",
+                                                                "emitters.0.max=[0.055,0.05,0.04545]"});
+  sph::Simulation sim(scene, cpu_factory(), seconds);
+  Ringing out;
+  const double mass = double(sim.setup().constants.fluids[0].mass) * double(sim.particles().size());
+  out.radius = std::cbrt(3.0 * mass / (4.0 * kPi * scene.fluids[0].rest_density));
+  while (sim.time() < seconds) {
+    sim.advance();
+    const sph::ParticleState& ps = sim.particles();
+    double c[3] = {0, 0, 0}, n = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (sph::length(ps.pos[i]) < 2.0 * out.radius) {
+        c[0] += ps.pos[i].x, c[1] += ps.pos[i].y, c[2] += ps.pos[i].z, n += 1;
+      }
+    double m[3] = {0, 0, 0}, k = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const double x = ps.pos[i].x - c[0] / n, y = ps.pos[i].y - c[1] / n, z = ps.pos[i].z - c[2] / n;
+      if (x * x + y * y + z * z > 2.25 * out.radius * out.radius) continue;
+      m[0] += x * x, m[1] += y * y, m[2] += z * z, k += 1;
+    }
+    out.t.push_back(sim.time());
+    out.q2.push_back((m[0] - 0.5 * (m[1] + m[2])) / k);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("the continuum surface force rings, the cohesion does not", "[surface_tension]") {
+  const double sigma = 4.7, rho0 = 1000.0;
+  // Continuum surface force: the box turns into one squeezed along x (q2 < 0) and back. Its period, between
+  // the first two minima of q2, is measured and reported (docs/results.md: 12% shorter than Rayleigh's, the
+  // issue's 10% not met); asserted is that it rings at all.
+  const Ringing csf = ring("csf", 0.75);
+  const double rayleigh = 2.0 * kPi / std::sqrt(8.0 * sigma / (rho0 * std::pow(csf.radius, 3)));
+  std::vector<double> minima;
+  for (std::size_t i = 1; i + 1 < csf.q2.size(); ++i) {
+    if (!(csf.q2[i] < 0.0 && csf.q2[i] < csf.q2[i - 1] && csf.q2[i] <= csf.q2[i + 1])) continue;
+    bool lowest = true;  // a minimum of the ringing, not of the step-to-step noise: the lowest within 0.1 s
+    for (std::size_t j = 0; j < csf.q2.size(); ++j)
+      if (std::fabs(csf.t[j] - csf.t[i]) < 0.1 && csf.q2[j] < csf.q2[i]) lowest = false;
+    if (lowest && (minima.empty() || csf.t[i] - minima.back() > 0.1)) minima.push_back(csf.t[i]);
+  }
+  const double least = *std::min_element(csf.q2.begin(), csf.q2.end());
+  INFO("csf: deformation from " << csf.q2.front() << " down to " << least << " m^2; minima at "
+                                << (minima.empty() ? -1.0 : minima[0]) << " and " << (minima.size() > 1 ? minima[1] : -1.0)
+                                << " s; Rayleigh's l = 2 period " << rayleigh << " s (R = " << csf.radius << " m)");
+  CHECK(least < -0.3 * csf.q2.front());  // squeezed the other way by at least 30% of the start's elongation
+  CHECK(minima.size() >= 2);             // and back again, and over once more
+  // Cohesion: the box never turns into one squeezed along x: it settles like an elastic solid.
+  const Ringing cohesion = ring("cohesion", 0.5);
+  const double lowest = *std::min_element(cohesion.q2.begin(), cohesion.q2.end());
+  INFO("cohesion: the deformation's least value " << lowest << " m^2 (start " << cohesion.q2.front() << ")");
+  CHECK(lowest > 0.0);
+}

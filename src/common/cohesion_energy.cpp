@@ -28,7 +28,8 @@ double akinci_cohesion_potential_shape(double q) {
 std::vector<double> cohesion_excess_energy(const SimConstants& c, const ParticleState& ps, double spacing) {
   std::vector<double> excess(ps.size(), 0.0);
   // PBF has no cohesion (it ignores surface_tension, said at set-up): nothing to release.
-  if (!c.surface_tension_enabled || c.solver == Solver::Pbf || ps.size() == 0) return excess;
+  // Either surface-tension model: the cohesion constant calibrated to sigma measures the surface energy.
+  if (!(c.surface_tension_enabled || c.csf_enabled) || c.solver == Solver::Pbf || ps.size() == 0) return excess;
   const double h = c.kernel.h;
   // A particle's share in the bulk: half the sum over a full cubic lattice of spacing d, per unit mass^2.
   const long n = long(std::ceil(h / spacing));

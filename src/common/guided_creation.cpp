@@ -1,6 +1,7 @@
 #include "guided_creation.h"
 
 #include "scene_fluids.h"
+#include "surface_tension_csf.h"
 
 #include <algorithm>
 #include <cmath>
@@ -356,7 +357,9 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.spring_yield = float(f.spring_yield);
     fc.spring_plasticity = float(f.spring_plasticity);
     if (f.near_stiffness > 0.0) c.near_enabled = 1;
-    if (f.surface_tension > 0.0) c.surface_tension_enabled = 1;
+    fc.csf_sigma = float(f.surface_tension / csf_band_integral(s.spacing, s.h, s.lattice_density));
+    const bool csf = scene.surface_tension_model == SurfaceTensionModel::Csf;
+    if (f.surface_tension > 0.0) (csf ? c.csf_enabled : c.surface_tension_enabled) = 1;
     if (f.xsph > 0.0) c.xsph_enabled = 1;
     if (f.artificial_viscosity > 0.0) c.artificial_enabled = 1;
     s.max_speed_of_sound = std::max(s.max_speed_of_sound, f.speed_of_sound);

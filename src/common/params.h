@@ -26,6 +26,9 @@ enum class ViscosityModel : int32_t { None, Mueller, Morris, Artificial };
 // The pressure solver of a step (src/solvers/): weakly compressible SPH with an equation of state (thesis
 // chapter 2), divergence-free SPH [BK15] (src/common/dfsph.h) or position-based fluids [MM13] (pbf.h).
 enum class Solver : int32_t { Wcsph, Dfsph, Pbf };
+// Surface tension (sph.surface_tension): cohesion between a fluid's particles ([AKT13] kernel calibrated from
+// sigma, forces.h) or the continuum surface force on its surface band (surface_tension_csf.h).
+enum class SurfaceTensionModel : int32_t { Cohesion, Csf };
 
 // DFSPH's solver settings (scene block "dfsph"). Tolerances are fractions of the rest density: the density
 // solver stops when the mean compression (rho* - rho0) / rho0 is at most density_tolerance ([BK15] eta, 0.01%),
@@ -97,6 +100,7 @@ struct FluidConstants {
   float artificial_alpha;  // alpha for Monaghan artificial viscosity
   float near_stiffness;    // k_near [m^2/s^2], P_near = k_near rho_near (thesis 3.1); 0 disables
   float cohesion;          // 8 sigma / (pi rho0^2 h^5 J4) [m/(kg s^2)], cohesion from sigma (guided_creation.h); 0 disables
+  float csf_sigma;         // sigma / chi [N/m] of the continuum surface force (surface_tension_csf.h)
   float xsph;              // XSPH epsilon; 0 disables
   float lifetime;          // particles older than this are recycled [s]; 0 = never
   // Viscoelastic springs (springs.h, Clavet et al. 2005, thesis eq. 2.26); spring_stiffness 0: none.
@@ -165,7 +169,8 @@ struct SimConstants {
   // the same, and single-fluid scenes keep their arithmetic bit for bit.
   int32_t number_density;
   int32_t near_enabled;             // any fluid with near_stiffness > 0
-  int32_t surface_tension_enabled;  // any fluid with surface_tension > 0
+  int32_t surface_tension_enabled;  // any fluid with surface_tension > 0 under the cohesion model
+  int32_t csf_enabled;              // any fluid with surface_tension > 0 under the continuum surface force
   int32_t xsph_enabled;             // any fluid with xsph > 0
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
   Vec3 gravity;

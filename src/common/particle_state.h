@@ -40,11 +40,12 @@ struct Spawn {
 // fields, sized only while such a solver runs (fit_derived), written before every use within a step.
 // DFSPH: alpha [m^5/kg], kappa [m^2/s^2], solver_error (each particle's share of the error the solver
 // checks) and support (1: enough neighbours for the divergence solve, dfsph_support). PBF: lambda [m^2], solver_error, delta_pos (the position correction [m], then the vorticity
-// confinement's acceleration [m/s^2]) and omega (vorticity [1/s]). DFSPH's warm start, which must survive
+// confinement's acceleration [m/s^2]) and omega (vorticity [1/s]). The continuum surface force
+// (surface_tension_csf.h), with any solver: surface_normal (the colour gradient n [1/m]) and curvature [1/m]. DFSPH's warm start, which must survive
 // the reorder, is kept in the particle fields pressure and near_pressure (particle_view.h).
 #define SPH_SOLVER_FIELDS(X) \
   X(float, alpha) X(float, kappa) X(float, lambda) X(float, solver_error) X(Vec3, delta_pos) X(Vec3, omega) \
-  X(int32_t, support)
+  X(int32_t, support) X(Vec3, surface_normal) X(float, curvature)
 
 // Sizes the derived fields of `arrays` (ParticleState here, the device arrays in src/cuda/device_arrays.h:
 // any type with the fields of these lists as resizable vectors) to n particles, and the solver fields to n
@@ -121,7 +122,7 @@ struct ParticleState {
                         id.data(),            pos_start.data(),     pos_mass.data(), vel_inv_rho.data(),
                         pressure_rho2.data(), near_pressure_rho2.data(), alpha.data(),       kappa.data(),
                         lambda.data(),        solver_error.data(),       delta_pos.data(),   omega.data(),
-                        support.data()};
+                        support.data(),       surface_normal.data(),     curvature.data()};
   }
 };
 
@@ -135,8 +136,9 @@ struct ParticleState {
 // either.
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
 constexpr std::size_t kDerivedFieldBytes = 2 * sizeof(Vec4) + 2 * sizeof(float);
-// DFSPH and PBF add their solver fields, 44 bytes, counted here for every solver (not re-measured).
-constexpr std::size_t kSolverFieldBytes = 4 * sizeof(float) + 2 * sizeof(Vec3) + sizeof(int32_t);
+// DFSPH, PBF and the continuum surface force add their solver fields, 60 bytes, counted here for every
+// solver (not re-measured).
+constexpr std::size_t kSolverFieldBytes = 5 * sizeof(float) + 3 * sizeof(Vec3) + sizeof(int32_t);
 constexpr std::size_t kBytesPerParticle = 8 * kParticleFieldBytes + kDerivedFieldBytes + kSolverFieldBytes;
 
 }  // namespace sph

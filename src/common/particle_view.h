@@ -33,7 +33,8 @@ struct ParticleView {
   Vec4* vel_inv_rho;          // by the pressure phase: vel_force [m/s] and 1 / rho [m^3/kg]
   float* pressure_rho2;       // by the pressure phase: P / rho^2 [m^5/(kg s^2)]
   float* near_pressure_rho2;  // by the pressure phase: P_near / rho^2, 0 without near pressure
-  // The incompressible solvers' scratch (SPH_SOLVER_FIELDS in particle_state.h), null under WCSPH:
+  // The incompressible solvers' scratch (SPH_SOLVER_FIELDS in particle_state.h), null where
+  // needs_solver_fields is false:
   float* alpha;         // DFSPH: alpha factor [m^5/kg]
   float* kappa;         // DFSPH: this iteration's stiffness kappa or kappa_v [m^2/s^2]
   float* lambda;        // PBF: Lagrange multiplier lambda [m^2]
@@ -41,7 +42,12 @@ struct ParticleView {
   Vec3* delta_pos;      // PBF: position correction [m]; after the solve, vorticity confinement [m/s^2]
   Vec3* omega;          // PBF: vorticity [1/s]
   int32_t* support;     // DFSPH: 1 where the neighbourhood is full enough for the divergence solve
+  Vec3* surface_normal; // continuum surface force: colour gradient n [1/m] (surface_tension_csf.h)
+  float* curvature;     // continuum surface force: mean curvature kappa [1/m]
 };
+
+// Whether a step needs the solver fields above: the incompressible solvers and the continuum surface force.
+inline bool needs_solver_fields(const SimConstants& c) { return c.solver != Solver::Wcsph || c.csf_enabled != 0; }
 
 // The grid phase's part of the derived fields, after its reorder: particle i's position with its mass
 // (the same float as c.fluids[fluid].mass, so sums keep their bits).

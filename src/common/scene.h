@@ -179,6 +179,9 @@ struct Scene {
   // "mass_density" (the plain sums of the neighbours' masses, which fail beyond a density ratio of about
   // 1.25 between touching fluids: issue 15). Only fluids of different particle mass tell them apart.
   bool number_density = true;
+  // sph.surface_tension: "cohesion" (forces.h, the default) or "csf" (surface_tension_csf.h): how the fluids'
+  // surface_tension acts.
+  SurfaceTensionModel surface_tension_model = SurfaceTensionModel::Cohesion;
   Integrator integrator = Integrator::ModifiedVelocityVerlet;  // WCSPH's; DFSPH and PBF integrate their own way
   // The pressure solver ("solver") and the settings of the incompressible ones (blocks "dfsph", "pbf";
   // params.h says what each is). DFSPH reads sph.viscosity and sph.walls and the fluids' viscosity and

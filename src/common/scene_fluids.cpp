@@ -52,7 +52,8 @@ void check_fluid_ratios(const Scene& scene) {
 }
 
 void check_surface_tension(const Scene& scene, double h) {
-  if (scene.solver != Solver::Wcsph) return;  // the incompressible solvers hold any pressure
+  // The incompressible solvers hold any pressure; the continuum surface force has no internal pressure.
+  if (scene.solver != Solver::Wcsph || scene.surface_tension_model != SurfaceTensionModel::Cohesion) return;
   for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
     const FluidSpec& f = scene.fluids[i];
     if (!(f.surface_tension > 0.0)) continue;

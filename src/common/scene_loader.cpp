@@ -389,7 +389,8 @@ Scene read_scene(const json& root, const std::string& source) {
 
   if (r.has("sph")) {
     ObjectReader sr(r.raw("sph"), source, "sph");
-    sr.allow({"density", "equation_of_state", "pressure_force", "viscosity", "negative_pressure", "walls", "multiphase"});
+    sr.allow({"density", "equation_of_state", "pressure_force", "viscosity", "negative_pressure", "walls", "multiphase",
+              "surface_tension"});
     s.density = sr.choice<DensityMethod>("density", s.density,
                                          {{"summation", DensityMethod::Summation}, {"continuity", DensityMethod::Continuity}});
     s.eos = sr.choice<EquationOfState>("equation_of_state", s.eos,
@@ -410,6 +411,8 @@ Scene read_scene(const json& root, const std::string& source) {
     s.boundary_particles = walls == 2;
     s.number_density = sr.choice<bool>("multiphase", s.number_density,
                                        {{"number_density", true}, {"mass_density", false}});
+    s.surface_tension_model = sr.choice<SurfaceTensionModel>(
+        "surface_tension", s.surface_tension_model, {{"cohesion", SurfaceTensionModel::Cohesion}, {"csf", SurfaceTensionModel::Csf}});
     sr.finish();
   }
 

@@ -119,7 +119,7 @@ void CpuBackend::build_grid() {
   }
   std::swap(s_, sorted_);
   s_.take_derived(sorted_);
-  s_.fit_derived(c_.solver != Solver::Wcsph);
+  s_.fit_derived(needs_solver_fields(c_));
   const ParticleView p = s_.view();
   for (int32_t j = 0; j < n; ++j) pack_position(c_, p, j);  // the neighbour loops' position and mass records
 

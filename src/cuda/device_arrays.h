@@ -196,7 +196,9 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(solver_error.data()),
                         thrust::raw_pointer_cast(delta_pos.data()),
                         thrust::raw_pointer_cast(omega.data()),
-                        thrust::raw_pointer_cast(support.data())};
+                        thrust::raw_pointer_cast(support.data()),
+                        thrust::raw_pointer_cast(surface_normal.data()),
+                        thrust::raw_pointer_cast(curvature.data())};
   }
 };
 

@@ -425,7 +425,7 @@ class DeviceBackend final : public Backend {
   void build_grid() {
     grid_.build(c_, d_, sorted_, with_temporaries(temporary_), &summary()->blocks, result_.blocks);
     d_.take_derived(sorted_);  // the reorder and the compaction carry only the fields the loops derive theirs from
-    d_.fit_derived(c_.solver != Solver::Wcsph);
+    d_.fit_derived(needs_solver_fields(c_));
     launch(n(), PackPositionFn{constants(), d_.view()});
   }
 

@@ -37,6 +37,7 @@
 #include "../common/sph_hd.h"
 #include "reduction.h"
 #include "wcsph.h"
+#include "surface_forces.h"
 
 namespace sph {
 namespace dfsph {
@@ -246,6 +247,7 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
       if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
       if (x.grid().boundary.n > 0 || x.grid().num_bodies > 0)
         x.for_each(BoundaryHydrostaticFn<C>{x.constants(), x.grid(), x.particles()});
+      continuum_surface_force(x);  // surface_forces.h
       return;
     case Phase::Predict: x.for_each(PredictVelocityFn{x.particles(), dt}); return;
     case Phase::DensitySolve:

@@ -20,6 +20,7 @@
 #include "../common/sph_hd.h"
 #include "../common/springs.h"
 #include "rigid_bodies.h"
+#include "surface_forces.h"
 
 namespace sph {
 namespace wcsph {
@@ -132,6 +133,7 @@ void run_phase(Exec& x, Phase p, float dt) {
         x.for_each(ForcesFn<C, decltype(model)>{x.constants(), x.grid(), x.particles()});
         if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, decltype(model)>{x.constants(), x.grid(), x.particles()});
       });
+      continuum_surface_force(x);  // surface_forces.h
       if (x.springs().capacity > 0) {
         x.for_each(IndexParticleFn{x.springs(), x.particles()});
         x.for_each(SpringForcesFn<C>{x.constants(), x.springs(), x.particles(), dt});

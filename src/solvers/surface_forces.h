@@ -1,0 +1,49 @@
+// The continuum surface force (src/common/surface_tension_csf.h) as loops of a solver's forces phase, shared
+// by WCSPH and DFSPH: the colour gradient of every particle, then its curvature (which reads its neighbours'
+// gradients), then the force added to the acceleration the forces loop wrote.
+#pragma once
+
+#include <cstdint>
+
+#include "../common/particle_view.h"
+#include "../common/sph_hd.h"
+#include "../common/surface_tension_csf.h"
+
+namespace sph {
+
+template <class C>
+struct CsfNormalFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const { p.surface_normal[i] = csf_normal(*c, g, p, i); }
+};
+
+template <class C>
+struct CsfCurvatureFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const { p.curvature[i] = csf_curvature(*c, g, p, i); }
+};
+
+template <class C>
+struct CsfForceFn {
+  C c;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) p.acc[i] += csf_acceleration(*c, p, i);
+  }
+};
+
+// After the forces loop of a step whose constants enable the continuum surface force.
+template <class Exec>
+void continuum_surface_force(Exec& x) {
+  if (!x.host_constants().csf_enabled) return;
+  using C = typename Exec::Constants;
+  x.for_each(CsfNormalFn<C>{x.constants(), x.grid(), x.particles()});
+  x.for_each(CsfCurvatureFn<C>{x.constants(), x.grid(), x.particles()});
+  x.for_each(CsfForceFn<C>{x.constants(), x.particles()});
+}
+
+}  // namespace sph
