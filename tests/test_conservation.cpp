@@ -58,6 +58,23 @@ Totals total(const sph::ParticleState& ps, const sph::SimConstants& c, Field fie
   return t;
 }
 
+// From a disordered, randomly moving start of the setup's particles: the forces of one evaluation sum to zero
+// up to float round-off of the pair sums, and over 200 steps of dt the momentum stays where it started (XSPH
+// and every pair term are antisymmetric too).
+void check_momentum_conserved(const sph::Setup& setup, float dt) {
+  sph::CpuBackend cpu(setup.constants);
+  cpu.upload(disorder(setup.particles, setup.spacing));
+  cpu.initialise_forces();
+  auto acc = [](const sph::ParticleState& ps, std::size_t i) { return ps.acc[i]; };
+  auto vel = [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; };
+  const Totals f = total(cpu.download(), setup.constants, acc);
+  for (double component : f.momentum) CHECK(std::fabs(component) < 1e-5 * f.scale);
+  const Totals p0 = total(cpu.download(), setup.constants, vel);
+  for (int step = 0; step < 200; ++step) cpu.step(dt);
+  const Totals p1 = total(cpu.download(), setup.constants, vel);
+  for (int k = 0; k < 3; ++k) CHECK(std::fabs(p1.momentum[k] - p0.momentum[k]) < 1e-4 * p0.scale);
+}
+
 }  // namespace
 
 TEST_CASE("symmetric pair forces conserve linear momentum", "[conservation]") {
@@ -67,20 +84,8 @@ TEST_CASE("symmetric pair forces conserve linear momentum", "[conservation]") {
                                                                                      {"mueller", "none"}}));
   const sph::Scene scene = sph::parse_scene(cloud_scene(pressure_force, viscosity), "momentum");
   const sph::Setup setup = sph::create_setup(scene, 1.0);
-  sph::CpuBackend cpu(setup.constants);
-  cpu.upload(disorder(setup.particles, setup.spacing));
-  cpu.initialise_forces();
-  INFO("pressure force " << pressure_force << ", viscosity " << viscosity << ", " << cpu.size() << " particles");
-
-  // One evaluation: the forces sum to zero up to float round-off of the pair sums.
-  const Totals f = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.acc[i]; });
-  for (double component : f.momentum) CHECK(std::fabs(component) < 1e-5 * f.scale);
-
-  // Many steps: momentum stays where it started (XSPH and every pair term are antisymmetric too).
-  const Totals p0 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
-  for (int step = 0; step < 200; ++step) cpu.step(2e-4f);
-  const Totals p1 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
-  for (int k = 0; k < 3; ++k) CHECK(std::fabs(p1.momentum[k] - p0.momentum[k]) < 1e-4 * p0.scale);
+  INFO("pressure force " << pressure_force << ", viscosity " << viscosity << ", " << setup.particles.size() << " particles");
+  check_momentum_conserved(setup, 2e-4f);
 }
 
 TEST_CASE("number-density pair forces conserve momentum between fluids of density ratio 10", "[conservation][multiphase]") {
@@ -102,13 +107,5 @@ TEST_CASE("number-density pair forces conserve momentum between fluids of densit
   const sph::Scene scene = sph::parse_scene(text, "momentum_two_fluids");
   const sph::Setup setup = sph::create_setup(scene, 1.0);
   REQUIRE(setup.constants.number_density == 1);
-  sph::CpuBackend cpu(setup.constants);
-  cpu.upload(disorder(setup.particles, setup.spacing));
-  cpu.initialise_forces();
-  const Totals f = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.acc[i]; });
-  for (double component : f.momentum) CHECK(std::fabs(component) < 1e-5 * f.scale);
-  const Totals p0 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
-  for (int step = 0; step < 200; ++step) cpu.step(1e-4f);
-  const Totals p1 = total(cpu.download(), setup.constants, [](const sph::ParticleState& ps, std::size_t i) { return ps.vel[i]; });
-  for (int k = 0; k < 3; ++k) CHECK(std::fabs(p1.momentum[k] - p0.momentum[k]) < 1e-4 * p0.scale);
+  check_momentum_conserved(setup, 1e-4f);
 }
