@@ -472,10 +472,18 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     throw SceneError(scene.source + ": resolution.neighbours: " + e.what());
   }
   if (!s.springs.empty()) {
+    const long ends = long(std::count_if(s.springs.partner.begin(), s.springs.partner.end(), [](int32_t p) { return p >= 0; }));
     std::ostringstream os;
-    os << "springs: up to " << s.springs.capacity << " per particle of the elastic fluids ("
-       << (s.springs.bytes() >> 20) << " MiB)";
+    os << "springs: " << ends / 2 << " between the particles of the elastic fluids, up to " << s.springs.capacity
+       << " per particle (" << (s.springs.bytes() >> 20) << " MiB)";
     s.report.push_back(os.str());
+  }
+  // Spring settings on a fluid without springs do nothing: said, not silently dropped.
+  for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
+    const FluidSpec& f = scene.fluids[i];
+    if (f.spring_modulus > 0.0 || (f.spring_yield == FluidSpec{}.spring_yield && f.spring_plasticity == 0.0)) continue;
+    s.report.push_back("note: fluids." + std::to_string(i) + " has no springs (spring_modulus 0): its spring_yield and "
+                       "spring_plasticity do nothing");
   }
   s.blowup_speed = fallback_blowup_speed(scene, s.max_speed_of_sound, s.jets);
 }

@@ -18,9 +18,11 @@ void Simulation::continue_from(const Frame& frame) {
   };
   if (!setup_.bodies.empty())
     refuse("the scene has rigid bodies (\"bodies\"), whose state the frames do not hold; run it from the start");
-  if (!setup_.springs.empty())
-    refuse("the scene has viscoelastic springs (fluids' spring_modulus), whose rest lengths the frames do not hold; "
-           "run it from the start");
+  for (std::size_t i = 0; i < scene_.fluids.size(); ++i)
+    if (scene_.fluids[i].spring_modulus > 0.0)
+      refuse("fluids." + std::to_string(i) + ".spring_modulus: the fluid has viscoelastic springs, whose rest lengths "
+             "the frames do not hold; run the scene from the start (or without springs: --set fluids." +
+             std::to_string(i) + ".spring_modulus=0)");
   if (info.scene != scene_.name)
     refuse("it was written by the scene \"" + info.scene + "\", not \"" + scene_.name +
            "\" (to start another scene from a frame, use the scene key initial_state)");
