@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "host_neighbours.h"
+#include "lattice_sum.h"
 
 namespace sph {
 
@@ -32,14 +33,9 @@ std::vector<double> cohesion_excess_energy(const SimConstants& c, const Particle
   if (!(c.surface_tension_enabled || c.csf_enabled) || c.solver == Solver::Pbf || ps.size() == 0) return excess;
   const double h = c.kernel.h;
   // A particle's share in the bulk: half the sum over a full cubic lattice of spacing d, per unit mass^2.
-  const long n = long(std::ceil(h / spacing));
-  double lattice = 0.0;
-  for (long k = -n; k <= n; ++k)
-    for (long j = -n; j <= n; ++j)
-      for (long i = -n; i <= n; ++i) {
-        const double r = spacing * std::sqrt(double(i * i + j * j + k * k));
-        if (r > 0.0 && r < h) lattice += akinci_cohesion_potential_shape(r / h);
-      }
+  const double lattice = lattice_sum(spacing, h, [&](double r2) {
+    return r2 > 0.0 ? akinci_cohesion_potential_shape(std::sqrt(r2) / h) : 0.0;
+  });
   const HostNeighbours neighbours(ps, h, [&](std::size_t a) { return ps.age[a] < kRemovedAge; });
   for (std::size_t a = 0; a < ps.size(); ++a) {
     const FluidConstants& f = c.fluids[ps.fluid[a]];

@@ -16,6 +16,7 @@
 
 #include "frame_reader.h"
 #include "grid.h"
+#include "lattice_sum.h"
 #include "obstacle_contacts.h"
 #include "time_step.h"
 #include "viscous_limit.h"
@@ -28,17 +29,8 @@ double smoothing_length(double spacing, double neighbours) {
 }
 
 double lattice_density_factor(double d, double h) {
-  const double pi = kPiDouble;
-  const double c = 315.0 / (64.0 * pi * std::pow(h, 9));
-  const long n = long(std::ceil(h / d));
-  double sum = 0.0;
-  for (long k = -n; k <= n; ++k)
-    for (long j = -n; j <= n; ++j)
-      for (long i = -n; i <= n; ++i) {
-        const double r2 = (i * i + j * j + k * k) * d * d;
-        if (r2 < h * h) sum += c * std::pow(h * h - r2, 3);
-      }
-  return sum * d * d * d;
+  const double c = 315.0 / (64.0 * kPiDouble * std::pow(h, 9));
+  return lattice_sum(d, h, [&](double r2) { return c * std::pow(h * h - r2, 3); }) * d * d * d;
 }
 
 namespace {

@@ -6,18 +6,12 @@
 #include <string>
 
 #include "host_neighbours.h"
+#include "lattice_sum.h"
 
 namespace sph {
 
 double spring_constant(double modulus, double spacing, double h) {
-  const long n = long(std::ceil(h / spacing));
-  double sum_r2 = 0.0;
-  for (long k = -n; k <= n; ++k)
-    for (long j = -n; j <= n; ++j)
-      for (long i = -n; i <= n; ++i) {
-        const double r2 = double(i * i + j * j + k * k) * spacing * spacing;
-        if (r2 > 0.0 && r2 < h * h) sum_r2 += r2;
-      }
+  const double sum_r2 = lattice_sum(spacing, h, [](double r2) { return r2; });  // the point itself adds 0
   return sum_r2 > 0.0 ? 30.0 * modulus * spacing * spacing * spacing / sum_r2 : 0.0;
 }
 
