@@ -32,6 +32,7 @@ void check_dfsph_equal(const sph::DfsphConstants& a, const sph::DfsphConstants& 
   CHECK(a.check_every == b.check_every);
   CHECK(a.divergence_solver == b.divergence_solver);
   CHECK(a.warm_start == b.warm_start);
+  CHECK(a.chebyshev == b.chebyshev);
 }
 
 void check_pbf_equal(const sph::PbfConstants& a, const sph::PbfConstants& b) {
@@ -88,7 +89,8 @@ TEST_CASE("loader: scene solver defaults to WCSPH, and the blocks to the papers'
 TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
   SECTION("dfsph") {
     const sph::Scene s = parse_solver("dfsph", R"("dfsph": { "density_tolerance": 0.002, "divergence_tolerance": 0.05,
-        "min_iterations": 3, "max_iterations": 40, "check_every": 5, "divergence_solver": false, "warm_start": false })");
+        "min_iterations": 3, "max_iterations": 40, "check_every": 5, "divergence_solver": false, "warm_start": false,
+        "chebyshev": 0 })");
     const sph::DfsphConstants& d = s.dfsph;
     CHECK(d.density_tolerance == Approx(0.002f));
     CHECK(d.divergence_tolerance == Approx(0.05f));
@@ -97,6 +99,7 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
     CHECK(d.check_every == 5);
     CHECK(d.divergence_solver == 0);
     CHECK(d.warm_start == 0);
+    CHECK(d.chebyshev == 0.0f);  // plain Jacobi
     // The upper ends of the ranges are allowed, and min_iterations may equal max_iterations.
     const sph::Scene e = parse_solver("dfsph", R"("dfsph": { "density_tolerance": 0.1, "divergence_tolerance": 1,
         "min_iterations": 10000, "max_iterations": 10000, "check_every": 100 })");
@@ -147,6 +150,7 @@ TEST_CASE("loader: scene solver values out of range are refused with the key pat
         {"check_every", "0", "allowed [1, 100]"},           {"check_every", "101", "allowed [1, 100]"},
         {"max_iterations", "2.5", "expected a whole number"}, {"density_tolerance", "\"small\"", "expected a number"},
         {"divergence_solver", "1", "expected true or false"}, {"warm_start", "\"yes\"", "expected true or false"},
+        {"chebyshev", "1", "allowed [0, 0.99]"},            {"chebyshev", "-0.1", "allowed [0, 0.99]"},
     };
     for (const BadValue& b : bad) {
       INFO("dfsph." << b.key << " = " << b.value);
@@ -207,7 +211,7 @@ TEST_CASE("loader: scene solver names and blocks are checked", "[loader][solver]
                         Contains("test.json") && Contains("dfsph.max_iteration") && Contains("unknown key") &&
                             Contains("density_tolerance") && Contains("divergence_tolerance") && Contains("min_iterations") &&
                             Contains("max_iterations") && Contains("check_every") && Contains("divergence_solver") &&
-                            Contains("warm_start"));
+                            Contains("warm_start") && Contains("chebyshev"));
     REQUIRE_THROWS_WITH(parse_solver("pbf", R"("pbf": { "epsilon": 0.1 })"),
                         Contains("test.json") && Contains("pbf.epsilon") && Contains("unknown key") &&
                             Contains("iterations") && Contains("relaxation") && Contains("scorr_k") && Contains("scorr_n") &&

@@ -60,8 +60,9 @@ double top_layer_height(const sph::ParticleState& ps) {
 
 TEST_CASE("DFSPH holds a resting column with mirror walls at rest density and height for 1 s", "[solvers][dfsph]") {
   // At the scene's time_step.max, 1 ms: 3.8 times WCSPH's sound-speed step 0.4 h / c0 on the same scene. Issue
-  // 12 asks for 10 times (2.63 ms): a run with max 2.6 ms held (interior +0.008%, top layer -0.3 mm), one with
-  // 2.63 ms blew up at 0.15 s (measured), so that target is not met (docs/results.md).
+  // 12 asks for 10 times (2.63 ms): runs at 2.6 and 2.63 ms sometimes hold and sometimes blow up within
+  // 0.2 s, with or without the Chebyshev acceleration (measured), so that target is not met (docs/results.md).
+  // Before the acceleration (dfsph.chebyshev) 5% of the 1 ms steps stopped at the iteration cap.
   const sph::Scene scene = scene_file("hydrostatic_tank.json", {"solver=dfsph"});
   const double dt_wcsph = scene.time_step.cfl_sound * sph::create_setup(scene, 1.0).h / 15.0;
   sph::Simulation sim(scene, cpu_factory(), 1.0);
@@ -79,6 +80,33 @@ TEST_CASE("DFSPH holds a resting column with mirror walls at rest density and he
   CHECK(std::fabs(c.mean) <= 5e-4);     // issue 12: at most 0.05% ([BK15] report 0.01%)
   CHECK(c.mean_abs <= 5e-4);
   CHECK(std::fabs(layer - layer0) <= d);  // height within one spacing
+  CHECK(t.density_capped_steps <= t.steps / 100);  // the solve converges (at most 1% of steps at the cap)
+}
+
+TEST_CASE("DFSPH's Chebyshev acceleration halves the iterations of plain Jacobi to the same tolerance",
+          "[solvers][dfsph]") {
+  // [Wan15] on the resting column at 1 ms steps, 0.3 s: the same tolerance, reached in fewer iterations, and
+  // both interiors within issue 12's 0.05% of rest density.
+  const auto run = [](const std::string& rho, double& iterations, long& capped) {
+    const sph::Scene scene = scene_file("hydrostatic_tank.json", {"solver=dfsph", "dfsph.chebyshev=" + rho});
+    sph::Simulation sim(scene, cpu_factory(), 0.3);
+    while (sim.time() < 0.3 - 1e-9) sim.advance();
+    const sph::SolverTotals& t = sim.solver_totals();
+    iterations = double(t.density_iterations) / double(t.steps);
+    capped = t.density_capped_steps;
+    return measure_column(sim);
+  };
+  double jacobi = 0.0, chebyshev = 0.0;
+  long capped_jacobi = 0, capped_chebyshev = 0;
+  const Column a = run("0", jacobi, capped_jacobi);
+  const Column b = run(std::to_string(sph::dfsph_defaults().chebyshev), chebyshev, capped_chebyshev);
+  INFO("mean density iterations: Jacobi " << jacobi << " (" << capped_jacobi << " capped steps), Chebyshev " << chebyshev
+                                           << " (" << capped_chebyshev << "); interior mean rho/rho0 - 1 " << a.mean
+                                           << " and " << b.mean);
+  CHECK(chebyshev <= 0.6 * jacobi);
+  CHECK(capped_chebyshev <= capped_jacobi);
+  CHECK(std::fabs(a.mean) <= 5e-4);
+  CHECK(std::fabs(b.mean) <= 5e-4);
 }
 
 TEST_CASE("DFSPH's divergence solve leaves the measured velocity divergence within its tolerance", "[solvers][dfsph]") {

@@ -22,7 +22,9 @@
 // so a particle with more pressure than it needs (after a warm start from a faster step, at a free surface)
 // loses it, and none ever pulls. They warm-start from the last step's pressures ([BK15] section 4.3), kept
 // per particle in the fields pressure (rho kappa, [Pa]) and near_pressure (rho kappa_v dt, [Pa s]), which
-// survive the grid's reorder and do not depend on dt. Convergence: the mean residual, one deterministic
+// survive the grid's reorder and do not depend on dt. The iteration is accelerated by Chebyshev's
+// semi-iterative method ([Wan15], dfsph.chebyshev; solve() below): on the 16k dam break and a resting column
+// it needs half the iterations or fewer (docs/results.md). Convergence: the mean residual, one deterministic
 // reduction (reduction.h) per check, every check_every iterations after the minimum, the same on every back
 // end; a solve that reaches max_iterations above its tolerance is flagged (SolverStats::*_capped) for the
 // run's metrics and summary.
@@ -126,6 +128,8 @@ struct ErrorFn {
   float dt;
   const float* kept;
   float scale;
+  float omega;  // Chebyshev weight ([Wan15]); 1: plain Jacobi
+  float* prev;  // the total stiffness one iteration back, written with this one's (scratch: p.lambda)
   SPH_KERNEL_FN void operator()(int32_t i) const {
     const float rest = (*c).fluids[p.fluid[i]].rest_density;
     if (p.age[i] < 0.0f) {
@@ -139,7 +143,11 @@ struct ErrorFn {
     const float increment = kDfsphRelaxation * (kDensity ? dfsph_density_stiffness(rest + excess, rest, p.alpha[i], dt)
                                                : dfsph_divergence_stiffness(excess, p.alpha[i], dt));
     const float total = kept[i] * scale / p.density[i];
-    const float next = total + increment > 0.0f ? total + increment : 0.0f;
+    // [Wan15]: the Jacobi iterate total + increment, extrapolated from the one before (prev) by omega.
+    float next = total + increment;
+    if (omega != 1.0f) next = omega * (next - prev[i]) + prev[i];
+    prev[i] = total;
+    next = next > 0.0f ? next : 0.0f;
     p.kappa[i] = next - total;
     const float residual = next > 0.0f ? fabsf(excess) : (excess > 0.0f ? excess : 0.0f);
     p.solver_error[i] = residual * (kDensity ? 1.0f : dt) / rest;
@@ -220,15 +228,31 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   const int32_t n = p.n;
   x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start});
   if (s.warm_start) x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, 0.0f});  // kept as it is
-  x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt, kept, kDensity ? 1.0f : 1.0f / dt});
+  // [Wan15]'s weights: omega_1 = 1, omega_2 = 2 / (2 - rho^2), omega_k = 4 / (4 - rho^2 omega_(k-1)). With
+  // the projection at 0 the iteration is not linear, so a check whose mean residual grew restarts the weights
+  // at 1 (this iteration's corrections recomputed as plain Jacobi): without the restart a resting column at
+  // 2.6 ms steps blew up within 0.14 s, with it ran 1 s (measured, rho = 0.9).
+  const float rho = s.chebyshev;
+  float omega = 1.0f;
+  const auto corrections = [&]() {
+    x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt, kept, kDensity ? 1.0f : 1.0f / dt, omega, p.lambda});
+  };
+  corrections();
   error = mean_of(x, p.solver_error, n);
   int32_t it = 0;
   while (it < s.max_iterations && (it < min_iterations || error > double(tolerance))) {
     x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, keep});
-    x.for_each(ErrorFn<C, kDensity>{x.constants(), x.grid(), p, dt, kept, kDensity ? 1.0f : 1.0f / dt});
+    if (rho > 0.0f) omega = omega == 1.0f ? 2.0f / (2.0f - rho * rho) : 4.0f / (4.0f - rho * rho * omega);
+    corrections();
     ++it;
-    if (it >= min_iterations && (it % s.check_every == 0 || it == s.max_iterations))
+    if (it >= min_iterations && (it % s.check_every == 0 || it == s.max_iterations)) {
+      const double before = error;
       error = mean_of(x, p.solver_error, n);
+      if (omega != 1.0f && error > before) {
+        omega = 1.0f;
+        corrections();
+      }
+    }
   }
   capped = it == s.max_iterations && error > double(tolerance);
   return it;
