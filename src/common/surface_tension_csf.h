@@ -13,7 +13,9 @@
 //   u = n / |n| (csf_curvature). The 2, not the 3 of a divergence in the bulk: the neighbours with a normal
 //   form a nearly flat band, whose sum x_ji . grad W holds the two directions along the surface, in which u
 //   turns, and little of the third (with 3 a sphere read 1.6 times 2 / R; projecting on the tangent plane
-//   instead divided by nearly zero for particles whose band lay along their normal, and threw them off);
+//   instead divided by nearly zero for particles whose band lay along their normal, and threw them off),
+//   then moved from the particles' outer layer out to the surface half a spacing beyond it
+//   (csf_surface_curvature);
 // - acceleration a_i = sigma kappa_i n_i / (chi rho0) where |n| h is above kCsfNormalFloor, else none
 //   (csf_acceleration; rho0, not the summed rho_i, which is small for a particle with few neighbours). chi
 //   is the integral of |n| across a flat lattice surface over those layers (csf_band_integral): the
@@ -40,6 +42,22 @@ constexpr float kCsfNormalFloor = 0.5f;
 // a curvature of the wrong sign from its two or three neighbours and was thrown off at 5 m/s (measured).
 constexpr int32_t kCsfMinNeighbours = 6;
 constexpr float kCsfMaxCurvature = 4.0f;
+
+// The curvature of the fluid's surface from that of the particles' outer layer, kappa_p (2 / r_p on a sphere of
+// particles): the surface lies half a spacing d beyond the particle centres (as the emitters lay a block out,
+// and as a settled drop shows: its outer layer at r_p = 0.0577 m, the ball of its volume R = 0.0619 m, d =
+// 0.0083 m), so 2 / R = 2 / (2 / kappa_p + d / 2) = kappa_p / (1 + kappa_p d / 4). Either sign (a concave
+// surface lies closer to its centre of curvature than the particles). The shell picture holds only where the
+// radius of curvature spans several spacings: the divisor's kappa_p is kept within +-kCsfOffsetMaxCurvature / d
+// (a radius of 4 d), so at a corner it stays within 0.875 to 1.125. Measured (docs/results.md): a box's l = 2
+// period from 12% short of Rayleigh's to 2% (12 across) and 5% (14 across); without the bound 6 of a cube's
+// corner particles were thrown off at 12 across, with it none at 10, 12 and 14 across.
+constexpr float kCsfOffsetMaxCurvature = 0.5f;
+SPH_HD inline float csf_surface_curvature(float kappa_p, float spacing) {
+  const float most = kCsfOffsetMaxCurvature / spacing;
+  const float bounded = kappa_p > most ? most : (kappa_p < -most ? -most : kappa_p);
+  return kappa_p / (1.0f + 0.25f * bounded * spacing);
+}
 
 SPH_HD inline Vec3 csf_normal(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
   const KernelCoeffs& k = c.kernel;
@@ -73,9 +91,10 @@ SPH_HD inline float csf_curvature(const SimConstants& c, const GridView& grid, c
     norm -= w * r2;                                          // V_j x_ji . grad W_ij
   });
   if (count < kCsfMinNeighbours || !(norm > 0.0f)) return 0.0f;
-  const float kappa = -2.0f * divergence / norm;
+  float kappa = -2.0f * divergence / norm;
   const float most = kCsfMaxCurvature / k.h;
-  return kappa > most ? most : (kappa < -most ? -most : kappa);
+  kappa = kappa > most ? most : (kappa < -most ? -most : kappa);
+  return csf_surface_curvature(kappa, cbrtf(p.pos_mass[i].w / c.fluids[fluid].rest_density));
 }
 
 SPH_HD inline Vec3 csf_acceleration(const SimConstants& c, const ParticleView& p, int32_t i) {
