@@ -97,13 +97,18 @@ struct DensityAlphaFn {
 // The warm start ([BK15] section 4.3): the pressure the last step's solve ended with, kappa = P / rho (density
 // solver, scale = 1) or kappa_v = P_v / (rho dt) (divergence solver, scale = 1 / dt). With warm_start off,
 // kappa = 0. Inlet particles get none.
+// The divergence solve (divergence true) gives a particle without support (p.support == 0) no pressure, and so
+// none to start from either: kept from a step in which it had support, the divergence pressure was applied
+// again at every later step (its corrections are 0, so nothing released it), and a cube's face layer under
+// the continuum surface force, once apart from the bulk, kept accelerating outward (measured).
 struct WarmStartFn {
   ParticleView p;
   float* kept;  // p.pressure or p.near_pressure
   float scale;
   int32_t warm;
+  bool divergence;
   SPH_HD void operator()(int32_t i) const {
-    if (!warm || p.age[i] < 0.0f) kept[i] = 0.0f;
+    if (!warm || p.age[i] < 0.0f || (divergence && p.support[i] == 0)) kept[i] = 0.0f;
     p.kappa[i] = kept[i] * scale / p.density[i];
   }
 };
@@ -226,7 +231,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   const float tolerance = kDensity ? s.density_tolerance : s.divergence_tolerance;
   const int32_t min_iterations = kDensity ? s.min_iterations : 1;
   const int32_t n = p.n;
-  x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start});
+  x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start, !kDensity});
   if (s.warm_start) x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, 0.0f});  // kept as it is
   // [Wan15]'s weights: omega_1 = 1, omega_2 = 2 / (2 - rho^2), omega_k = 4 / (4 - rho^2 omega_(k-1)). With
   // the projection at 0 the iteration is not linear, so a check whose mean residual grew restarts the weights
