@@ -159,6 +159,20 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
 }
 
+// Whether any fluid of the scene has a surface tension (the set-up line then names the model).
+bool surface_tension_of(const Scene& scene) {
+  for (const auto& f : scene.fluids)
+    if (f.surface_tension > 0.0) return true;
+  return false;
+}
+
+// A number as the scene file would give it (shortest form).
+std::string format_number(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
 void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_steps, double run_time,
                  const Frame* restart) {
   const Setup& st = sim.setup();
@@ -170,6 +184,10 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz << " cells\n"
             << "solver: " << solver_name(scene.solver)
             << (scene.solver == Solver::Wcsph ? std::string(", integrator: ") + integrator_name(scene.integrator) : std::string())
+            << (scene.solver == Solver::Dfsph ? ", chebyshev: " + format_number(scene.dfsph.chebyshev) : std::string())
+            << (surface_tension_of(scene) ? std::string(", surface tension: ") +
+                                                (scene.surface_tension_model == SurfaceTensionModel::Csf ? "csf" : "cohesion")
+                                          : std::string())
             << ", speed bound: " << sim.speed_bound()
             << " m/s, energy budget: " << sim.energy_budget() << " J\n"
             << (sim.relaxation().ran ? sim.relaxation().summary() + "\n" : std::string())
@@ -502,7 +520,8 @@ int main(int argc, char** argv) {
                  "write a metrics row at most every this many simulated seconds, in [0, 1e7] (0: every step)");
   app.add_option("--set,-s", o.sets,
                  "override a scene value, key=value with a dotted path, repeatable; for example\n"
-                 "--set fluids.0.viscosity=0.01 --set resolution.particles_across=40 --set integrator=leapfrog");
+                 "--set fluids.0.viscosity=0.01 --set resolution.particles_across=40 --set integrator=leapfrog\n"
+                 "(every key and its allowed values: README.md, \"Scenes\")");
   app.add_option("--surface-every", surface_every,
                  "write the fluid's surface as a closed triangle mesh OUT/surface_NNNNN.ply (binary PLY, OpenVDB; for\n"
                  "Blender and ParaView) every this many simulated seconds, in [0, 1e7] (0: none, the default);\n"
