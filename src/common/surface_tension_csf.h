@@ -50,7 +50,7 @@ constexpr float kCsfMaxCurvature = 4.0f;
 // surface lies closer to its centre of curvature than the particles). The shell picture holds only where the
 // radius of curvature spans several spacings: the divisor's kappa_p is kept within +-kCsfOffsetMaxCurvature / d
 // (a radius of 4 d), so at a corner it stays within 0.875 to 1.125. Measured (docs/results.md): a box's l = 2
-// period from 12% short of Rayleigh's to 2% (12 across) and 5% (14 across); without the bound 6 of a cube's
+// period from 12% short of Rayleigh's to 3% (12 across) and 8% (14 across); without the bound 6 of a cube's
 // corner particles were thrown off at 12 across, with it none at 10, 12 and 14 across.
 constexpr float kCsfOffsetMaxCurvature = 0.5f;
 SPH_HD inline float csf_surface_curvature(float kappa_p, float spacing) {
