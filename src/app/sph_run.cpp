@@ -159,20 +159,6 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
 }
 
-// Whether any fluid of the scene has a surface tension (the set-up line then names the model).
-bool surface_tension_of(const Scene& scene) {
-  for (const auto& f : scene.fluids)
-    if (f.surface_tension > 0.0) return true;
-  return false;
-}
-
-// A number as the scene file would give it (shortest form).
-std::string format_number(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
 void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_steps, double run_time,
                  const Frame* restart) {
   const Setup& st = sim.setup();
@@ -183,11 +169,10 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << "grid: cells of " << st.constants.grid.cell_size << " m, only where particles are; domain "
             << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz << " cells\n"
             << "solver: " << solver_name(scene.solver)
-            << (scene.solver == Solver::Wcsph ? std::string(", integrator: ") + integrator_name(scene.integrator) : std::string())
-            << (scene.solver == Solver::Dfsph ? ", chebyshev: " + format_number(scene.dfsph.chebyshev) : std::string())
-            << (surface_tension_of(scene) ? std::string(", surface tension: ") +
-                                                (scene.surface_tension_model == SurfaceTensionModel::Csf ? "csf" : "cohesion")
-                                          : std::string())
+            << (scene.solver == Solver::Wcsph ? std::string(", integrator: ") + integrator_name(scene.integrator) : std::string());
+  if (scene.solver == Solver::Dfsph) std::cout << ", chebyshev: " << scene.dfsph.chebyshev;
+  std::cout << (st.constants.csf_enabled ? ", surface tension: csf"
+                                         : (st.constants.surface_tension_enabled ? ", surface tension: cohesion" : ""))
             << ", speed bound: " << sim.speed_bound()
             << " m/s, energy budget: " << sim.energy_budget() << " J\n"
             << (sim.relaxation().ran ? sim.relaxation().summary() + "\n" : std::string())
