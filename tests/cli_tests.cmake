@@ -527,6 +527,12 @@ sph_cli_test(surface_tension_too_soft
 sph_cli_test(springs_dfsph_refused
   --exit 1 --stderr "fluids.0.spring_modulus" --stderr "wcsph"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=dfsph --out ${SPH_CLI_OUT}/springs_dfsph)
+sph_cli_test(contact_angle_csf_refused
+  --exit 1 --stderr "fluids.0.contact_angle" --stderr "cohesion"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/wetting.json --set sph.surface_tension=csf --out ${SPH_CLI_OUT}/contact_csf)
+sph_cli_test(contact_angle_out_of_range
+  --exit 1 --stderr "fluids.1.contact_angle" --stderr "out of range" --stderr "180"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/wetting.json --set fluids.1.contact_angle=0 --out ${SPH_CLI_OUT}/contact_zero)
 sph_cli_test(viscoelastic_short_run
   --exit 0 --stdout "up to 26 per particle" --file ${SPH_CLI_OUT}/viscoelastic_run/metrics.csv
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --time 0.02 --quiet --out ${SPH_CLI_OUT}/viscoelastic_run)

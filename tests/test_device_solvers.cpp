@@ -91,6 +91,20 @@ TEST_CASE("device solvers: every solver with boundary particles", "[device][solv
   }
 }
 
+TEST_CASE("device solvers: adhesion to boundary particles under WCSPH and DFSPH", "[device][solvers][adhesion]") {
+  // Issue 15: Akinci's adhesion (forces.h, boundary_pair) beside the cohesion, two fluids of different contact
+  // angles on a floor of boundary particles (scenes/wetting.json, the drops on the floor from the start).
+  for (const char* solver : {"wcsph", "dfsph"}) {
+    const sph::Scene scene = scene_file("wetting.json", {"resolution.particles_across=5", std::string("solver=") + solver,
+                                                         "emitters.0.min=[0.03,0,0.03]", "emitters.1.min=[0.13,0,0.03]"});
+    INFO("solver " << solver);
+    std::unique_ptr<sph::Simulation> ref;
+    compare_runs(scene, 40, &ref);
+    REQUIRE(ref->setup().constants.adhesion_enabled == 1);
+    compare_phases(ref->setup().constants, ref->particles(), float(ref->last_dt()), ref->setup().boundary);
+  }
+}
+
 TEST_CASE("device solvers: a floating box (rigid body, two-way coupling) under WCSPH", "[device][solvers][bodies]") {
   // The body's force and torque come from the back end's deterministic sums, and its pose from the host:
   // every step's particles bit for bit (which needs the same pose on both).

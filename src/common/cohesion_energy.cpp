@@ -26,6 +26,50 @@ double akinci_cohesion_potential_shape(double q) {
   return outer + 2.0 * (shape_antiderivative(0.5) - shape_antiderivative(q)) - (0.5 - q) / 64.0;
 }
 
+double akinci_adhesion_potential_shape(double q) {
+  if (q >= 1.0) return 0.0;
+  if (q < 0.5) q = 0.5;
+  // s = 3/4 - cos(phi) / 4: phi from phi_q (s = q) to pi (s = 1); a ds = sqrt(sin / 2) sin / 4 dphi.
+  const double pi = 3.14159265358979323846;
+  const double lo = std::acos(3.0 - 4.0 * q), hi = pi;
+  const int n = 512;
+  const double step = (hi - lo) / n;
+  const auto g = [](double phi) {
+    const double s = std::sin(phi);
+    return s > 0.0 ? 0.25 * s * std::sqrt(0.5 * s) : 0.0;
+  };
+  double sum = g(lo) + g(hi);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * g(lo + i * step);
+  return sum * step / 3.0;
+}
+
+double adhesion_constant(double cohesion, double contact_angle_deg, double spacing, double h) {
+  const double cos_theta = std::cos(contact_angle_deg * 3.14159265358979323846 / 180.0);
+  const double b_cohesion = half_lattice_binding(spacing, h, [&](double r2) {
+    return akinci_cohesion_potential_shape(std::sqrt(r2) / h);
+  });
+  const double b_adhesion = half_lattice_binding(spacing, h, [&](double r2) {
+    return akinci_adhesion_potential_shape(std::sqrt(r2) / h);
+  });
+  return cohesion * 0.5 * (1.0 + cos_theta) * b_cohesion / b_adhesion;
+}
+
+double adhesion_energy_bound(double adhesion, double mass, double spacing, double h) {
+  // The first layer at d / 2 from the wall, the wall's layers at d / 2, 3 d / 2, ... behind it: one column of
+  // the binding sum (half_lattice_binding's k = 0).
+  long n = 0;
+  while (double(n) * spacing < h) ++n;
+  double sum = 0.0;
+  for (long l = 0; l <= n; ++l)
+    for (long j = -n; j <= n; ++j)
+      for (long i = -n; i <= n; ++i) {
+        const double dy = double(l + 1) * spacing;
+        const double r2 = double(i * i + j * j) * spacing * spacing + dy * dy;
+        if (r2 < h * h) sum += akinci_adhesion_potential_shape(std::sqrt(r2) / h);
+      }
+  return adhesion * mass * h * sum;
+}
+
 std::vector<double> cohesion_excess_energy(const SimConstants& c, const ParticleState& ps, double spacing) {
   std::vector<double> excess(ps.size(), 0.0);
   // PBF has no cohesion (it ignores surface_tension, said at set-up): nothing to release.

@@ -16,6 +16,31 @@ namespace sph {
 // int_q^1 c(s) ds of the cohesion kernel's shape c (kernels.h, akinci_cohesion_shape), 0 <= q <= 1.
 double akinci_cohesion_potential_shape(double q);
 
+// int_q^1 a(s) ds of the adhesion kernel's shape a (kernels.h, akinci_adhesion_shape), 0 <= q <= 1: with s = 3/4 -
+// cos(phi) / 4, a = sqrt(sin(phi) / 2), a smooth integrand in phi (Simpson, 512 intervals; relative error
+// below 1e-6, tests/test_kernels.cpp).
+double akinci_adhesion_potential_shape(double q);
+
+// The adhesion constant k_a [m/(kg s^2)] of a fluid with cohesion constant `cohesion` (its fluids.N.cohesion,
+// calibrated to sigma: guided_creation.h) that meets boundary particles at the contact angle theta [degrees],
+// on the lattice of spacing d [m] with support h [m] that set-up lays the fluid and the walls on. The adhesion
+// pair force -k_a m_a Psi_b a(r / h) x_ab / r ([AKT13] eq. 6 with their kernel A, eq. 7; Psi_b = rho0 V_b, the
+// fluid's mass on the lattice) is the pair potential -k_a m^2 h int_{r/h}^1 a, as the cohesion's is
+// -gamma' m^2 h int_{r/h}^1 c. The work per area to part the fluid from a wall is then W_a = k_a m^2 h B_a / d^2
+// and to part the fluid from itself W_c = gamma' m^2 h B_c / d^2 = 2 sigma_eff, B the half-lattice bindings
+// (lattice_sum.h) of the two potential shapes; Young and Dupre: a liquid meets its wall at theta when
+// W_a = sigma (1 + cos theta) = W_c (1 + cos theta) / 2, so k_a = gamma' (1 + cos theta) / 2 B_c / B_a. Taken
+// on the lattice rather than in the continuum, where the same ratio is J_C4 / J_A4 (int q^4 of the shapes):
+// the lattice binds with the cohesion kernel at 0.75 of its continuum value and with the adhesion kernel at
+// 0.93, so the continuum ratio would make every wall 24% more wetting than asked. theta = 180: no adhesion;
+// theta -> 0: the wall binds as the fluid itself does (complete wetting).
+double adhesion_constant(double cohesion, double contact_angle_deg, double spacing, double h);
+
+// The most adhesion energy one particle of a fluid with adhesion constant k_a and mass m can release [J/kg]:
+// its binding in the first layer at a flat wall of boundary particles, k_a m h sum_b int_{r_b/h}^1 a over the
+// wall's half-lattice (the energy budget, simulation.cpp, assumes every particle could reach a wall).
+double adhesion_energy_bound(double adhesion, double mass, double spacing, double h);
+
 // Per particle of ps, its cohesive energy above that of a particle inside a cubic lattice of spacing d
 // filled with its fluid [J/kg], e_a = 1/2 sum_b u(r_ab) over the particles of its fluid, (e_a - e_bulk) / m_a,
 // at least 0. All zero (and no neighbour search) where no fluid has surface tension. ps: positions, fluids.

@@ -226,6 +226,9 @@ SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides
     const Vec3 vn = dot(vab, normal) * normal;
     f += artificial_viscosity_pair(c, s.fluid, s.wall, xab, r2, vn + friction * (vab - vn)) * grad;
   }
+  // Adhesion ([AKT13] eq. 6, calibrated from the fluid's contact angle: cohesion_energy.h): a pull towards the
+  // boundary particle, -k_a Psi_b a(r / h) x_ab / r.
+  if (c.adhesion_enabled) f -= s.fluid.fluid->adhesion * s.wall.mass * akinci_adhesion_shape(r / k.h) * inv_r;
   Vec3 acc = f * xab;
   if (friction > 0.0f) acc += friction * laminar_viscosity_pair(c, s.fluid, s.wall, r, r2, grad, vab);
   return acc;

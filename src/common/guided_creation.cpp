@@ -14,6 +14,7 @@
 #include "scene_fluids.h"
 #include "setup_checks.h"
 
+#include "cohesion_energy.h"
 #include "frame_reader.h"
 #include "grid.h"
 #include "lattice_sum.h"
@@ -311,6 +312,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   check_incompressible_step(scene, s.spacing);
   check_surface_tension(scene, s.h);
   check_springs(scene);
+  check_contact_angle(scene);
   report_ignored_settings(scene, s.report);
   s.meshes = load_meshes(scene);
 
@@ -342,6 +344,8 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.artificial_alpha = float(f.artificial_viscosity);
     fc.near_stiffness = float(f.near_stiffness);
     fc.cohesion = float(cohesion_from_surface_tension(f.surface_tension, f.rest_density, s.h));
+    fc.adhesion = f.contact_angle > 0.0 ? float(adhesion_constant(fc.cohesion, f.contact_angle, s.spacing, s.h)) : 0.0f;
+    if (fc.adhesion > 0.0f) c.adhesion_enabled = 1;
     fc.xsph = float(f.xsph);
     fc.lifetime = 0.0f;
     // Springs: k / m from the shear modulus (springs.h).

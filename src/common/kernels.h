@@ -6,6 +6,8 @@
 // convention: the caller multiplies by the pair vector it already holds and never divides by r twice.
 #pragma once
 
+#include <cmath>
+
 #include "sph_hd.h"
 
 namespace sph {
@@ -143,6 +145,17 @@ SPH_HD inline float akinci_cohesion_shape(float q) {
   const float d = 1.0f - q;
   const float c = d * d * d * q * q * q;
   return q > 0.5f ? c : 2.0f * c - 1.0f / 64.0f;
+}
+
+// Akinci, Akinci & Teschner 2013 eq. 7, the adhesion kernel, support h: A(r) = 0.007 / h^3.25 (-4 r^2 / h + 6 r -
+// 2 h)^(1/4) for h / 2 < r <= h, 0 elsewhere, i.e. A = 0.007 h^-3 a(r / h) with
+//   a(q) = (-4 q^2 + 6 q - 2)^(1/4)   for 1/2 < q < 1,
+// 0 elsewhere: attractive only, peaking at q = 3/4, zero at half the support so that it never pulls a fluid
+// particle into the wall's particles. Returns a(q); the rest goes into the fluid's adhesion constant
+// (cohesion_energy.h, adhesion_constant).
+SPH_HD inline float akinci_adhesion_shape(float q) {
+  if (q <= 0.5f || q >= 1.0f) return 0.0f;
+  return std::sqrt(std::sqrt((-4.0f * q + 6.0f) * q - 2.0f));
 }
 
 }  // namespace sph

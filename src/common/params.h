@@ -106,6 +106,7 @@ struct FluidConstants {
   float near_stiffness;    // k_near [m^2/s^2], P_near = k_near rho_near (thesis 3.1); 0 disables
   float cohesion;          // 8 sigma / (pi rho0^2 h^5 J4) [m/(kg s^2)], cohesion from sigma (guided_creation.h); 0 disables
   float csf_sigma;         // sigma / chi [N/m] of the continuum surface force (surface_tension_csf.h)
+  float adhesion;          // k_a [m/(kg s^2)], adhesion to boundary particles from the contact angle (cohesion_energy.h); 0: none
   float xsph;              // XSPH epsilon; 0 disables
   float lifetime;          // particles older than this are recycled [s]; 0 = never
   // Viscoelastic springs (springs.h, Clavet et al. 2005, thesis eq. 2.26); spring_stiffness 0: none.
@@ -175,6 +176,7 @@ struct SimConstants {
   int32_t number_density;
   int32_t near_enabled;             // any fluid with near_stiffness > 0
   int32_t surface_tension_enabled;  // any fluid with surface_tension > 0 under the cohesion model
+  int32_t adhesion_enabled;         // any fluid with an adhesion to boundary particles (contact_angle)
   int32_t csf_enabled;              // any fluid with surface_tension > 0 under the continuum surface force
   int32_t xsph_enabled;             // any fluid with xsph > 0
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair

@@ -29,6 +29,9 @@ struct FluidSpec {
   double near_stiffness = 0.0;     // k_near, m^2/s^2; 0 = no double density relaxation
   double surface_tension = 0.0;    // sigma [N/m], cohesion calibrated to it (guided_creation.h); 0 = off
   double xsph = 0.0;               // XSPH epsilon; 0 = off
+  // Equilibrium contact angle [degrees] on boundary particles, (0, 180]: Akinci's adhesion calibrated to it
+  // (cohesion_energy.h, adhesion_constant); 0 (the key absent) = no adhesion term.
+  double contact_angle = 0.0;
   // Viscoelastic springs between close particles at the start (springs.h): shear modulus G [Pa] of the
   // spring network (0 = none), yield ratio gamma and plasticity alpha [1/s] (Clavet et al. 2005).
   double spring_modulus = 0.0;

@@ -72,6 +72,25 @@ void check_surface_tension(const Scene& scene, double h) {
   }
 }
 
+void check_contact_angle(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
+    const FluidSpec& f = scene.fluids[i];
+    if (!(f.contact_angle > 0.0)) continue;
+    const std::string key = scene.source + ": " + fluid_key(i) + ".contact_angle";
+    if (!(f.surface_tension > 0.0))
+      throw SceneError(key + ": the adhesion is calibrated from the fluid's surface tension; give " + fluid_key(i) +
+                       ".surface_tension > 0 [N/m] or remove contact_angle");
+    if (scene.surface_tension_model != SurfaceTensionModel::Cohesion)
+      throw SceneError(key + ": needs sph.surface_tension = \"cohesion\"; the continuum surface force (\"csf\") has no "
+                             "wall term for the adhesion to balance (the fluid would climb every wall)");
+    if (scene.solver == Solver::Pbf)
+      throw SceneError(key + ": solver \"pbf\" has no surface tension, so no adhesion; use \"wcsph\" or \"dfsph\"");
+    if (!scene.boundary_particles && scene.bodies.empty())
+      throw SceneError(key + ": the adhesion acts between the fluid and boundary particles; set sph.walls = "
+                             "\"particles\" (or add bodies)");
+  }
+}
+
 void check_springs(const Scene& scene) {
   for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
     const FluidSpec& f = scene.fluids[i];

@@ -31,6 +31,12 @@ void check_surface_tension(const Scene& scene, double h);
 // speed's time step also resolves the springs. SceneError naming the key otherwise.
 void check_springs(const Scene& scene);
 
+// A contact angle (Akinci's adhesion, cohesion_energy.h) only where its calibration holds: a fluid with
+// surface_tension > 0 under the cohesion model (the continuum surface force has no wall term, and with the
+// adhesion alone water climbed every wall of its tank: docs/results.md), a solver with surface tension (not
+// PBF), and walls of boundary particles or rigid bodies for it to act on. SceneError naming the key otherwise.
+void check_contact_angle(const Scene& scene);
+
 constexpr double kElasticWaveLimit = 0.5;
 constexpr double kCohesionCompressionLimit = 0.03;
 constexpr double kMassDensityRatioLimit = 1.25;

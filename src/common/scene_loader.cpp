@@ -25,7 +25,7 @@ namespace {
 
 FluidSpec read_fluid(ObjectReader& r) {
   r.allow({"name", "rest_density", "speed_of_sound", "viscosity", "artificial_viscosity", "near_stiffness",
-           "surface_tension", "xsph", "spring_modulus", "spring_yield", "spring_plasticity"});
+           "surface_tension", "contact_angle", "xsph", "spring_modulus", "spring_yield", "spring_plasticity"});
   FluidSpec f;
   f.name = r.string("name", f.name);
   f.rest_density = r.number("rest_density", f.rest_density, 0.0, 1e5, true);
@@ -34,6 +34,7 @@ FluidSpec read_fluid(ObjectReader& r) {
   f.artificial_viscosity = r.number("artificial_viscosity", f.artificial_viscosity, 0.0, 10.0);
   f.near_stiffness = r.number("near_stiffness", f.near_stiffness, 0.0, 1e8);
   f.surface_tension = r.number("surface_tension", f.surface_tension, 0.0, 1e6);
+  f.contact_angle = r.number("contact_angle", f.contact_angle, 0.0, 180.0, true);
   f.xsph = r.number("xsph", f.xsph, 0.0, 1.0);
   f.spring_modulus = r.number("spring_modulus", f.spring_modulus, 0.0, 1e9);
   f.spring_yield = r.number("spring_yield", f.spring_yield, 0.0, 10.0);

@@ -87,10 +87,15 @@ void Simulation::rebase_energy(const ParticleState& ps) {
   max_specific_in_ = -std::numeric_limits<double>::infinity();
   // Surface tension's share: the surface energy the cohesion can release (cohesion_energy.h).
   const std::vector<double> surface = cohesion_excess_energy(c, ps, setup_.spacing);
+  // The adhesion's share: what a particle releases by reaching a wall (cohesion_energy.h).
+  double adhesion[kMaxFluids] = {};
+  for (int32_t k = 0; k < c.num_fluids; ++k)
+    if (c.fluids[k].adhesion > 0.0f)
+      adhesion[k] = adhesion_energy_bound(c.fluids[k].adhesion, c.fluids[k].mass, setup_.spacing, c.kernel.h);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.age[i] >= kRemovedAge) continue;
     const FluidConstants& f = c.fluids[ps.fluid[i]];
-    const double u = specific_internal_energy(c, f, ps.density[i]) + surface[i] +
+    const double u = specific_internal_energy(c, f, ps.density[i]) + surface[i] + adhesion[ps.fluid[i]] +
                      (c.near_enabled ? near_internal_energy(f, ps.near_density[i], ps.density[i]) : 0.0);
     add_energy(ps.pos[i], ps.vel[i], ps.fluid[i], u);
   }
