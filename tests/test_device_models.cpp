@@ -166,3 +166,10 @@ TEST_CASE("device models: the continuum surface force on a free drop", "[device]
   for (float k : phases[phase_slot(sph::Phase::Forces)].curvature) kappa = std::max(kappa, k);
   CHECK(kappa > 0.0f);
 }
+
+TEST_CASE("device models: interface tension between two fluids", "[device][models][interface]") {
+  // Issue 15: the cohesion between two fluids (forces.h, interface_cohesion), a loop of its own.
+  const sph::Scene scene = scene_file("interface_drop.json", {"resolution.spacing=0.01"});
+  REQUIRE(!scene.interface_tensions.empty());
+  check_case(scene, {{"interface tension", [](sph::SimConstants& c) { c.interface_cohesion_enabled = 0; }}}, 60);
+}

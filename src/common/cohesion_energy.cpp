@@ -74,7 +74,8 @@ std::vector<double> cohesion_excess_energy(const SimConstants& c, const Particle
   std::vector<double> excess(ps.size(), 0.0);
   // PBF has no cohesion (it ignores surface_tension, said at set-up): nothing to release.
   // Either surface-tension model: the cohesion constant calibrated to sigma measures the surface energy.
-  if (!(c.surface_tension_enabled || c.csf_enabled) || c.solver == Solver::Pbf || ps.size() == 0) return excess;
+  const bool cross = c.interface_cohesion_enabled != 0;  // the cohesion between two fluids (interface tension)
+  if (!(c.surface_tension_enabled || c.csf_enabled || cross) || c.solver == Solver::Pbf || ps.size() == 0) return excess;
   const double h = c.kernel.h;
   // A particle's share in the bulk: half the sum over a full cubic lattice of spacing d, per unit mass^2.
   const double lattice = lattice_sum(spacing, h, [&](double r2) {
@@ -83,15 +84,23 @@ std::vector<double> cohesion_excess_energy(const SimConstants& c, const Particle
   const HostNeighbours neighbours(ps, h, [&](std::size_t a) { return ps.age[a] < kRemovedAge; });
   for (std::size_t a = 0; a < ps.size(); ++a) {
     const FluidConstants& f = c.fluids[ps.fluid[a]];
-    if (f.cohesion == 0.0f || ps.age[a] >= kRemovedAge) continue;
+    bool with_others = false;
+    for (int32_t k = 0; cross && k < c.num_fluids; ++k) with_others = with_others || c.cross_cohesion[ps.fluid[a]][k] != 0.0f;
+    if ((f.cohesion == 0.0f && !with_others) || ps.age[a] >= kRemovedAge) continue;
     double sum = 0.0;  // sum_b int_{r/h}^1 c over a's fluid
-    neighbours.for_each_same_fluid(a, [&](std::size_t, Vec3 x) {
+    double other = 0.0;  // sum_b K_ab m_b int_{r/h}^1 c over the other fluids
+    neighbours.for_each(a, [&](std::size_t b, Vec3 x) {
       const double r = std::sqrt(double(x.x) * x.x + double(x.y) * x.y + double(x.z) * x.z);
-      if (r < h) sum += akinci_cohesion_potential_shape(r / h);
+      if (!(r < h)) return;
+      if (ps.fluid[b] == ps.fluid[a]) sum += akinci_cohesion_potential_shape(r / h);
+      else if (cross) other += double(c.cross_cohesion[ps.fluid[a]][ps.fluid[b]]) * double(c.fluids[ps.fluid[b]].mass) *
+                               akinci_cohesion_potential_shape(r / h);
     });
     // (e_a - e_bulk) / m_a = 1/2 m (-constant h) (sum - lattice): u / (m_a m_b) = -constant h int_{r/h}^1 c,
-    // the fluid's cohesion constant being gamma 32 / (pi h^3), and the neighbours have a's mass (one fluid).
-    const double e = 0.5 * double(f.mass) * (-double(f.cohesion) * h) * (sum - lattice);
+    // the fluid's cohesion constant being gamma 32 / (pi h^3), and the neighbours have a's mass (one fluid);
+    // a pair with another fluid adds 1/2 (-K_ab m_b h) int c (negative where they attract: an interface costs
+    // less than the two surfaces, positive where they repel).
+    const double e = 0.5 * double(f.mass) * (-double(f.cohesion) * h) * (sum - lattice) - 0.5 * h * other;
     excess[a] = e > 0.0 ? e : 0.0;
   }
   return excess;

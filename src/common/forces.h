@@ -136,11 +136,12 @@ SPH_HD_ALWAYS_INLINE Vec3 laminar_viscosity_pair(const SimConstants& c, const Pa
 // -gamma m_a m_b C(r) x_ab / r of [AKT13] eq. 1 with their kernel C, eq. 2, and gamma calibrated from sigma in
 // N/m): particle a's acceleration, to be subtracted. Akinci's curvature term and the factor
 // K_ab = 2 rho0 / (rho_a + rho_b) are left out: the calibration counts the missing neighbours of a surface
-// particle as they are, and the curvature term carries no units that sigma could fix. Fluids do not pull on
-// each other, so two fluids with sigma_1 and sigma_2 meet with an interface tension of sigma_1 + sigma_2.
-SPH_HD_ALWAYS_INLINE Vec3 cohesion_pair(const KernelCoeffs& k, const FluidConstants& fa, float mb, float r2, Vec3 xab) {
+// particle as they are, and the curvature term carries no units that sigma could fix. Two fluids pull on
+// each other only with the cross cohesion of the scene's interface_tension (SimConstants::cross_cohesion);
+// without it they meet with an interface tension of sigma_1 + sigma_2. `cohesion`: the pair's constant.
+SPH_HD_ALWAYS_INLINE Vec3 cohesion_pair(const KernelCoeffs& k, float cohesion, float mb, float r2, Vec3 xab) {
   const float r = sqrtf(r2);
-  return (fa.cohesion * mb * akinci_cohesion_shape(r / k.h) / r) * xab;
+  return (cohesion * mb * akinci_cohesion_shape(r / k.h) / r) * xab;
 }
 
 template <class Model>
@@ -286,6 +287,23 @@ SPH_HD inline void body_reaction(const SimConstants& c, const GridView& grid, co
   });
 }
 
+// The cohesion between particle a and the other fluids' particles, which sets their interface tension
+// (SimConstants::cross_cohesion, guided_creation.h): a loop of its own after the forces loop
+// (src/solvers/surface_forces.h), run only where the scene gives an interface_tension; inside the forces loop
+// the table's lookup pushed the GPU kernel past its 80 registers into spills (ptxas, sm_90). [m/s^2]
+SPH_HD inline Vec3 interface_cohesion(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a) {
+  const KernelCoeffs& k = c.kernel;
+  const uint8_t fa = p.fluid[a];
+  Vec3 acc{0.0f, 0.0f, 0.0f};
+  for_each_neighbour(grid, p.pos_mass, a, k.h2, [&](int32_t b, Vec3 xab, float r2) {
+    const uint8_t fb = p.fluid[b];
+    if (fb == fa || r2 <= 0.0f) return;
+    const float cohesion = c.cross_cohesion[fa][fb];
+    if (cohesion != 0.0f) acc -= cohesion_pair(k, cohesion, p.pos_mass[b].w, r2, xab);
+  });
+  return acc;
+}
+
 // The forces on particle a under the model Model (with_force_model picks it once per loop).
 template <class Model>
 SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a) {
@@ -309,7 +327,7 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
     const Vec3 vab = va - side_b.vel;
     pressure_viscosity_pair<Model>(c, side_a, side_b, xab, r2, vab, acc);
     const float mb = side_b.mass;
-    if (c.surface_tension_enabled && &fa == &fb) acc -= cohesion_pair(k, fa, mb, r2, xab);
+    if (c.surface_tension_enabled && &fa == &fb) acc -= cohesion_pair(k, fa.cohesion, mb, r2, xab);
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
       dv -= xsph_pair_weight(k, fa.xsph, mb, r2, side_a.rho, side_b.rho) * vab;
     }

@@ -43,6 +43,10 @@ double cohesion_from_surface_tension(double sigma, double rest_density, double h
   return 8.0 * sigma / (3.14159265358979323846 * rest_density * rest_density * std::pow(h, 5) * kCohesionJ4);
 }
 
+double cross_cohesion(double sigma_a, double sigma_b, double sigma_ab, double rho_a, double rho_b, double h) {
+  return 4.0 * (sigma_a + sigma_b - sigma_ab) / (kPiDouble * rho_a * rho_b * std::pow(h, 5) * kCohesionJ4);
+}
+
 double cohesion_pressure(double sigma, double h) { return 16.0 / 3.0 * (kCohesionJ3 / kCohesionJ4) * sigma / h; }
 
 namespace {
@@ -313,6 +317,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   check_surface_tension(scene, s.h);
   check_springs(scene);
   check_contact_angle(scene);
+  check_interface_tension(scene);
   report_ignored_settings(scene, s.report);
   s.meshes = load_meshes(scene);
 
@@ -362,6 +367,12 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   }
   for (int32_t i = 1; i < c.num_fluids; ++i)
     if (c.fluids[i].mass != c.fluids[0].mass) c.number_density = scene.number_density ? 1 : 0;
+  for (const InterfaceTensionSpec& t : scene.interface_tensions) {
+    const FluidSpec &fa = scene.fluids[std::size_t(t.a)], &fb = scene.fluids[std::size_t(t.b)];
+    const float k = float(cross_cohesion(fa.surface_tension, fb.surface_tension, t.sigma, fa.rest_density, fb.rest_density, s.h));
+    c.cross_cohesion[t.a][t.b] = c.cross_cohesion[t.b][t.a] = k;
+    if (k != 0.0f) c.interface_cohesion_enabled = 1;
+  }
   s.viscous_rate = viscous_rate(c, s.spacing, s.h, s.lattice_density);
   c.num_shapes = int32_t(scene.boundaries.size());
   for (std::size_t i = 0; i < scene.boundaries.size(); ++i) c.shapes[i] = scene.boundaries[i].shape;

@@ -58,6 +58,15 @@ double lattice_density_factor(double spacing, double h);
 // oscillation period follow from sigma (tests/test_surface_tension.cpp).
 double cohesion_from_surface_tension(double sigma, double rest_density, double h);
 
+// The cohesion between particles of two different fluids a and b that gives their interface the tension
+// sigma_ab [N/m], in the mean-field picture of cohesion_from_surface_tension: parting the two fluids costs
+// the work W_ab = (pi / 4) rho0_a rho0_b K_ab h^5 J4 per area (the cohesion's 2 sigma with one fluid), and
+// Dupre's relation sigma_ab = sigma_a + sigma_b - W_ab gives K_ab = 4 (sigma_a + sigma_b - sigma_ab) /
+// (pi rho0_a rho0_b h^5 J4) [m / (kg s^2)]: a_a = -K_ab sum_b m_b c(r / h) x_ab / r, the pair force
+// -K_ab m_a m_b c x_ab / r equal and opposite. sigma_ab = sigma_a + sigma_b: 0 (the fluids ignore each other);
+// below it they attract, above it they repel.
+double cross_cohesion(double sigma_a, double sigma_b, double sigma_ab, double rho_a, double rho_b, double h);
+
 // The cohesion's internal pressure [Pa], the virial of the pair force in the bulk,
 // (2 pi / 3) n^2 int r^3 u'(r) dr = (16 / 3) (J3 / J4) sigma / h = 8.23 sigma / h, J3 = 33 / 28672: the
 // equation of state must hold it, so it compresses the fluid by about this / (rho0 c0^2).

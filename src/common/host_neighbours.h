@@ -26,6 +26,14 @@ class HostNeighbours {
   // than h among them; the caller measures the distance as it needs), x_ab = x_a - x_b in single precision.
   template <class F>
   void for_each_same_fluid(std::size_t a, F f) const {
+    for_each(a, [&](std::size_t b, Vec3 x) {
+      if (ps_.fluid[b] == ps_.fluid[a]) f(b, x);
+    });
+  }
+
+  // The same for the binned particles of every fluid.
+  template <class F>
+  void for_each(std::size_t a, F f) const {
     const std::array<int64_t, 3> ca = cell_of(ps_.pos[a]);
     for (int64_t dk = -1; dk <= 1; ++dk)
       for (int64_t dj = -1; dj <= 1; ++dj)
@@ -33,7 +41,7 @@ class HostNeighbours {
           const auto it = cells_.find(key({ca[0] + di, ca[1] + dj, ca[2] + dk}));
           if (it == cells_.end()) continue;
           for (const uint32_t b : it->second)
-            if (b != a && ps_.fluid[b] == ps_.fluid[a]) f(std::size_t(b), ps_.pos[a] - ps_.pos[b]);
+            if (b != a) f(std::size_t(b), ps_.pos[a] - ps_.pos[b]);
         }
   }
 

@@ -177,6 +177,7 @@ struct SimConstants {
   int32_t near_enabled;             // any fluid with near_stiffness > 0
   int32_t surface_tension_enabled;  // any fluid with surface_tension > 0 under the cohesion model
   int32_t adhesion_enabled;         // any fluid with an adhesion to boundary particles (contact_angle)
+  int32_t interface_cohesion_enabled;  // any cross_cohesion != 0 (an interface tension between two fluids)
   int32_t csf_enabled;              // any fluid with surface_tension > 0 under the continuum surface force
   int32_t xsph_enabled;             // any fluid with xsph > 0
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
@@ -188,6 +189,11 @@ struct SimConstants {
   int32_t num_fluids;
   int32_t num_shapes;
   FluidConstants fluids[kMaxFluids];
+  // The cohesion constant between particles of two different fluids a != b [m/(kg s^2)] (as
+  // FluidConstants::cohesion; guided_creation.h, cross_cohesion), symmetric, from the scene's
+  // interface_tension; 0: no cohesion between them. Negative: they repel (an interface tension above
+  // sigma_a + sigma_b).
+  float cross_cohesion[kMaxFluids][kMaxFluids];
   Shape shapes[kMaxShapes];
   GridGeometry grid;
 };

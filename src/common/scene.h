@@ -63,6 +63,14 @@ struct EmitterSpec {
   double min_extent() const;
 };
 
+// An interface tension between two fluids (scene key "interface_tension", cohesion model): sigma_ab [N/m],
+// set by a cohesion between their particles (guided_creation.h, cross_cohesion). Pairs not listed meet with
+// sigma_a + sigma_b (no attraction between them).
+struct InterfaceTensionSpec {
+  int a = 0, b = 0;     // fluid indices, a != b
+  double sigma = 0.0;   // [N/m], >= 0
+};
+
 struct BoundarySpec {
   Shape shape{};  // type, coefficients and geometry, ready for SimConstants
 };
@@ -144,6 +152,7 @@ struct Scene {
   std::string source;  // file it came from, for messages
 
   std::vector<FluidSpec> fluids;
+  std::vector<InterfaceTensionSpec> interface_tensions;
   std::vector<EmitterSpec> emitters;
   std::vector<BoundarySpec> boundaries;
   std::vector<MeshSpec> meshes;

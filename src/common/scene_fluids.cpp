@@ -91,6 +91,16 @@ void check_contact_angle(const Scene& scene) {
   }
 }
 
+void check_interface_tension(const Scene& scene) {
+  if (scene.interface_tensions.empty()) return;
+  const std::string key = scene.source + ": interface_tension";
+  if (scene.surface_tension_model != SurfaceTensionModel::Cohesion)
+    throw SceneError(key + ": needs sph.surface_tension = \"cohesion\" (it is a cohesion between the two fluids' "
+                           "particles); the continuum surface force (\"csf\") acts on each fluid's own surface only");
+  if (scene.solver == Solver::Pbf)
+    throw SceneError(key + ": solver \"pbf\" has no surface tension; use \"wcsph\" or \"dfsph\"");
+}
+
 void check_springs(const Scene& scene) {
   for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
     const FluidSpec& f = scene.fluids[i];

@@ -37,6 +37,10 @@ void check_springs(const Scene& scene);
 // PBF), and walls of boundary particles or rigid bodies for it to act on. SceneError naming the key otherwise.
 void check_contact_angle(const Scene& scene);
 
+// An interface tension (scene key interface_tension) only under the cohesion model and a solver with surface
+// tension (not PBF). SceneError naming the key otherwise.
+void check_interface_tension(const Scene& scene);
+
 constexpr double kElasticWaveLimit = 0.5;
 constexpr double kCohesionCompressionLimit = 0.03;
 constexpr double kMassDensityRatioLimit = 1.25;

@@ -43,21 +43,49 @@ FluidSpec read_fluid(ObjectReader& r) {
   return f;
 }
 
-int read_fluid_ref(ObjectReader& r, const std::vector<FluidSpec>& fluids) {
-  if (!r.has("fluid")) return 0;
-  const json& v = r.raw("fluid");
+// A fluid named by its name or its index in "fluids" (key: the value's path, for messages).
+int fluid_index(const json& v, const std::vector<FluidSpec>& fluids, const std::string& source, const std::string& key) {
   if (v.is_number_integer()) {
     const long i = v.get<long>();
-    if (i < 0 || i >= long(fluids.size()))
-      fail(r.source(), r.key_path("fluid"), "index " + std::to_string(i) + " does not name a fluid");
+    if (i < 0 || i >= long(fluids.size())) fail(source, key, "index " + std::to_string(i) + " does not name a fluid");
     return int(i);
   }
   if (v.is_string()) {
     for (std::size_t i = 0; i < fluids.size(); ++i)
       if (fluids[i].name == v.get<std::string>()) return int(i);
-    fail(r.source(), r.key_path("fluid"), "no fluid named \"" + v.get<std::string>() + "\"");
+    fail(source, key, "no fluid named \"" + v.get<std::string>() + "\"");
   }
-  fail(r.source(), r.key_path("fluid"), "expected a fluid name or index");
+  fail(source, key, "expected a fluid name or index");
+}
+
+int read_fluid_ref(ObjectReader& r, const std::vector<FluidSpec>& fluids) {
+  if (!r.has("fluid")) return 0;
+  return fluid_index(r.raw("fluid"), fluids, r.source(), r.key_path("fluid"));
+}
+
+// "interface_tension": [{"fluids": [A, B], "sigma": N/m}, ...], each pair of different fluids at most once.
+void read_interface_tensions(const json& list, const std::string& source, Scene& s) {
+  if (!list.is_array())
+    fail(source, "interface_tension", "expected a list of {\"fluids\": [A, B], \"sigma\": N/m} (A, B: fluid names or indices)");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "interface_tension." + std::to_string(i);
+    ObjectReader r(list[i], source, path);
+    r.allow({"fluids", "sigma"});
+    if (!r.has("fluids")) r.missing("fluids", "is required: the two fluids, [A, B], by name or index");
+    if (!r.has("sigma")) r.missing("sigma", "is required: the interface tension in N/m, >= 0");
+    const json& pair = r.raw("fluids");
+    if (!pair.is_array() || pair.size() != 2) fail(source, path + ".fluids", "expected two fluids, [A, B], by name or index");
+    InterfaceTensionSpec t;
+    t.a = fluid_index(pair[0], s.fluids, source, path + ".fluids.0");
+    t.b = fluid_index(pair[1], s.fluids, source, path + ".fluids.1");
+    if (t.a == t.b) fail(source, path + ".fluids", "names one fluid twice; an interface is between two different fluids");
+    t.sigma = r.number("sigma", 0.0, 0.0, 1e6);
+    for (const InterfaceTensionSpec& u : s.interface_tensions)
+      if ((u.a == t.a && u.b == t.b) || (u.a == t.b && u.b == t.a))
+        fail(source, path + ".fluids", "this pair of fluids is given twice");
+    r.finish();
+    s.interface_tensions.push_back(t);
+  }
 }
 
 EmitterSpec read_emitter(ObjectReader& r, const std::vector<FluidSpec>& fluids) {
@@ -321,7 +349,7 @@ Scene read_scene(const json& root, const std::string& source) {
   ObjectReader r(root, source, "");
   r.allow({"name", "description", "fluids", "emitters", "boundaries", "resolution", "sph", "solver", "dfsph", "pbf",
            "integrator", "time_step", "gravity", "domain", "run", "limits", "relaxation", "initial_state", "on_overlap",
-           "meshes", "bodies", "probes"});
+           "meshes", "bodies", "probes", "interface_tension"});
   s.name = r.string("name", s.name);
   s.description = r.string("description", "");
 
@@ -334,6 +362,7 @@ Scene read_scene(const json& root, const std::string& source) {
     ObjectReader fr(fl[i], source, "fluids." + std::to_string(i));
     s.fluids.push_back(read_fluid(fr));
   }
+  if (r.has("interface_tension")) read_interface_tensions(r.raw("interface_tension"), source, s);
 
   if (r.has("initial_state")) {  // a path relative to the scene file; frame_reader.h reads and checks it
     const fs::path p = r.string("initial_state", "");

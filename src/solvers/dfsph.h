@@ -277,6 +277,7 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
       if (x.grid().boundary.n > 0 || x.grid().num_bodies > 0)
         x.for_each(BoundaryHydrostaticFn<C>{x.constants(), x.grid(), x.particles()});
       continuum_surface_force(x);  // surface_forces.h
+      interface_cohesion_forces(x);
       return;
     case Phase::Predict: x.for_each(PredictVelocityFn{x.particles(), dt}); return;
     case Phase::DensitySolve:

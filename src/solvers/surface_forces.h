@@ -1,10 +1,12 @@
 // The continuum surface force (src/common/surface_tension_csf.h) as loops of a solver's forces phase, shared
 // by WCSPH and DFSPH: the colour gradient of every particle, then its curvature (which reads its neighbours'
-// gradients), then the force added to the acceleration the forces loop wrote.
+// gradients), then the force added to the acceleration the forces loop wrote. And the cohesion between two
+// fluids that sets their interface tension (forces.h, interface_cohesion), also after the forces loop.
 #pragma once
 
 #include <cstdint>
 
+#include "../common/forces.h"
 #include "../common/particle_view.h"
 #include "../common/sph_hd.h"
 #include "../common/surface_tension_csf.h"
@@ -35,6 +37,24 @@ struct CsfForceFn {
     if (p.age[i] >= 0.0f) p.acc[i] += csf_acceleration(*c, p, i);
   }
 };
+
+template <class C>
+struct InterfaceCohesionFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) p.acc[i] += interface_cohesion(*c, g, p, i);
+  }
+};
+
+// After the forces loop of a step whose constants give two fluids a cohesion (an interface tension).
+template <class Exec>
+void interface_cohesion_forces(Exec& x) {
+  if (!x.host_constants().interface_cohesion_enabled) return;
+  using C = typename Exec::Constants;
+  x.for_each(InterfaceCohesionFn<C>{x.constants(), x.grid(), x.particles()});
+}
 
 // After the forces loop of a step whose constants enable the continuum surface force.
 template <class Exec>

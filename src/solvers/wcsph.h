@@ -134,6 +134,7 @@ void run_phase(Exec& x, Phase p, float dt) {
         if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, decltype(model)>{x.constants(), x.grid(), x.particles()});
       });
       continuum_surface_force(x);  // surface_forces.h
+      interface_cohesion_forces(x);
       if (x.springs().capacity > 0) {
         x.for_each(IndexParticleFn{x.springs(), x.particles()});
         x.for_each(SpringForcesFn<C>{x.constants(), x.springs(), x.particles(), dt});
