@@ -224,7 +224,7 @@ TEST_CASE("loader: wrong JSON types are refused with the expected type", "[loade
   t.boundaries = R"({ "type": "box" })";
   REQUIRE_THROWS_WITH(parse(t), Contains("boundaries") && Contains("list"));
   REQUIRE_THROWS_WITH(parse_with_emitter(R"({ "type": "box", "fluid": true, "min": [0,0,0], "max": [1,1,1] })"),
-                      Contains("emitters.0.fluid") && Contains("fluid name or index"));
+                      Contains("emitters.0.fluid") && Contains("fluid name or an integer index"));
 }
 
 TEST_CASE("loader: required members are named when missing", "[loader]") {

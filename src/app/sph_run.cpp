@@ -172,8 +172,12 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << (scene.solver == Solver::Wcsph ? std::string(", integrator: ") + integrator_name(scene.integrator) : std::string());
   if (scene.solver == Solver::Dfsph) std::cout << ", chebyshev: " << scene.dfsph.chebyshev;
   std::cout << (st.constants.csf_enabled ? ", surface tension: csf"
-                                         : (st.constants.surface_tension_enabled ? ", surface tension: cohesion" : ""))
-            << ", speed bound: " << sim.speed_bound()
+                                         : (st.constants.surface_tension_enabled ? ", surface tension: cohesion" : ""));
+  if (!scene.interface_tensions.empty())
+    std::cout << ", interface tension: " << scene.interface_tensions.size()
+              << (scene.interface_tensions.size() == 1 ? " pair" : " pairs");
+  if (st.constants.adhesion_enabled) std::cout << ", adhesion to walls (contact_angle)";
+  std::cout << ", speed bound: " << sim.speed_bound()
             << " m/s, energy budget: " << sim.energy_budget() << " J\n"
             << (sim.relaxation().ran ? sim.relaxation().summary() + "\n" : std::string())
             << (restart ? "restart: " + o.restart + " (frame " + std::to_string(restart->info.frame_index) + ", step " +

@@ -70,6 +70,28 @@ void check_surface_tension(const Scene& scene, double h) {
        << std::sqrt(p / (kCohesionCompressionLimit * f.rest_density)) << " m/s (or a smaller sigma, or a coarser resolution)";
     throw SceneError(os.str());
   }
+  // An interface tension's cohesion between two fluids is that of one fluid with sigma = |sigma_a + sigma_b -
+  // sigma_ab| / 2 (guided_creation.h, cross_cohesion): the same limit on each side's equation of state.
+  for (std::size_t k = 0; k < scene.interface_tensions.size(); ++k) {
+    const InterfaceTensionSpec& t = scene.interface_tensions[k];
+    const double sigma = 0.5 * std::fabs(scene.fluids[std::size_t(t.a)].surface_tension +
+                                         scene.fluids[std::size_t(t.b)].surface_tension - t.sigma);
+    const double p = cohesion_pressure(sigma, h);
+    for (const int i : {t.a, t.b}) {
+      const FluidSpec& f = scene.fluids[std::size_t(i)];
+      const double compression = p / (f.rest_density * f.speed_of_sound * f.speed_of_sound);
+      if (compression <= kCohesionCompressionLimit) continue;
+      std::ostringstream os;
+      os.precision(3);
+      os << scene.source << ": interface_tension." << k << ".sigma = " << t.sigma << " N/m needs a cohesion between "
+         << fluid_key(t.a) << " and " << fluid_key(t.b) << " that would compress " << fluid_key(i) << " by "
+         << 100.0 * compression << "% at this resolution (h = " << h << " m; internal pressure 8.23 |sigma_a + sigma_b - "
+         << "sigma_ab| / (2 h) = " << p << " Pa), more than " << 100.0 * kCohesionCompressionLimit << "%. Allowed: "
+         << fluid_key(i) << ".speed_of_sound of at least " << std::sqrt(p / (kCohesionCompressionLimit * f.rest_density))
+         << " m/s (or an interface tension closer to the sum of the two fluids' sigmas, or a coarser resolution)";
+      throw SceneError(os.str());
+    }
+  }
 }
 
 void check_contact_angle(const Scene& scene) {
@@ -77,14 +99,14 @@ void check_contact_angle(const Scene& scene) {
     const FluidSpec& f = scene.fluids[i];
     if (!(f.contact_angle > 0.0)) continue;
     const std::string key = scene.source + ": " + fluid_key(i) + ".contact_angle";
+    if (scene.solver == Solver::Pbf)
+      throw SceneError(key + ": solver \"pbf\" has no surface tension, so no adhesion; use \"wcsph\" or \"dfsph\"");
     if (!(f.surface_tension > 0.0))
       throw SceneError(key + ": the adhesion is calibrated from the fluid's surface tension; give " + fluid_key(i) +
                        ".surface_tension > 0 [N/m] or remove contact_angle");
     if (scene.surface_tension_model != SurfaceTensionModel::Cohesion)
       throw SceneError(key + ": needs sph.surface_tension = \"cohesion\"; the continuum surface force (\"csf\") has no "
                              "wall term for the adhesion to balance (the fluid would climb every wall)");
-    if (scene.solver == Solver::Pbf)
-      throw SceneError(key + ": solver \"pbf\" has no surface tension, so no adhesion; use \"wcsph\" or \"dfsph\"");
     if (!scene.boundary_particles && scene.bodies.empty())
       throw SceneError(key + ": the adhesion acts between the fluid and boundary particles; set sph.walls = "
                              "\"particles\" (or add bodies)");

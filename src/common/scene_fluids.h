@@ -22,7 +22,9 @@ void check_fluid_ratios(const Scene& scene);
 // (cohesion_pressure, guided_creation.h) may compress a fluid by at most kCohesionCompressionLimit, i.e.
 // 8.23 sigma / h <= limit rho0 c0^2 (SceneError naming fluids.N.speed_of_sound and its least value
 // otherwise). Under a softer fluid the cohesion crushes the drop it should shape: a 0.1 m cube with
-// sigma = 4 N/m and c0 = 5 m/s (compression 10%) flew apart.
+// sigma = 4 N/m and c0 = 5 m/s (compression 10%) flew apart. The same for each interface tension's cohesion
+// between two fluids (SceneError naming interface_tension.N.sigma; unchecked, 100 N/m between two fluids
+// of c0 = 20 m/s blew up at 7 ms).
 void check_surface_tension(const Scene& scene, double h);
 
 // Springs (springs.h) only where they can be kept: under WCSPH (the incompressible solvers' steps are too long

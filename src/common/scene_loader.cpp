@@ -55,7 +55,7 @@ int fluid_index(const json& v, const std::vector<FluidSpec>& fluids, const std::
       if (fluids[i].name == v.get<std::string>()) return int(i);
     fail(source, key, "no fluid named \"" + v.get<std::string>() + "\"");
   }
-  fail(source, key, "expected a fluid name or index");
+  fail(source, key, "expected a fluid name or an integer index");
 }
 
 int read_fluid_ref(ObjectReader& r, const std::vector<FluidSpec>& fluids) {
