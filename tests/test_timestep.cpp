@@ -142,6 +142,12 @@ TEST_CASE("the incompressible solvers' step is [BK15]'s CFL step, capped, withou
   const double rate = 1000.0;  // 1/s: the viscous limit cfl_viscosity 2 / rate = 1 ms decides
   CHECK(sph::choose_incompressible_step(t, 0.01, rate, 0.1).dt == Approx(t.cfl_viscosity * 2.0 / rate));
   CHECK(sph::choose_incompressible_step(t, 0.01, rate, 0.1).limit == sph::StepLimit::Viscosity);
+  // DFSPH's acceleration limit C_a sqrt(h / a_max) (the non-pressure forces): 600 m/s^2 at h = 0.0079 m gives
+  // 0.25 * 3.63 ms; without a_max (PBF, or none given) it is not applied.
+  CHECK(sph::choose_incompressible_step(t, 0.01, 0.0, 0.1, 0.0079, 600.0).dt ==
+        Approx(t.cfl_acceleration * std::sqrt(0.0079 / 600.0)).epsilon(1e-12));
+  CHECK(sph::choose_incompressible_step(t, 0.01, 0.0, 0.1, 0.0079, 600.0).limit == sph::StepLimit::Acceleration);
+  CHECK(sph::choose_incompressible_step(t, 0.01, 0.0, 0.1, 0.0079, 1.0).limit == sph::StepLimit::Maximum);
   t.mode = sph::TimeStepMode::Fixed;
   t.dt = 0.004;
   CHECK(sph::choose_incompressible_step(t, 0.01, rate, 100.0).dt == 0.004);
