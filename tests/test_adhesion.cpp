@@ -134,7 +134,7 @@ TEST_CASE("the energy budget counts what the adhesion can release", "[surface_te
   REQUIRE(b.setup().constants.fluids[0].adhesion == 0.0f);
   long n0 = 0;
   for (std::size_t i = 0; i < a.particles().size(); ++i) n0 += a.particles().fluid[i] == 0;
-  const double per_kg = sph::adhesion_energy_bound(c.fluids[0].adhesion, c.fluids[0].mass, a.setup().spacing, c.kernel.h);
+  const double per_kg = sph::adhesion_first_layer_energy(c.fluids[0].adhesion, c.fluids[0].mass, a.setup().spacing, c.kernel.h);
   CHECK(per_kg > 0.0);
   CHECK(a.energy_budget() - b.energy_budget() == Approx(double(n0) * double(c.fluids[0].mass) * per_kg).epsilon(1e-6));
 }

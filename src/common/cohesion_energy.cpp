@@ -54,19 +54,10 @@ double adhesion_constant(double cohesion, double contact_angle_deg, double spaci
   return cohesion * 0.5 * (1.0 + cos_theta) * b_cohesion / b_adhesion;
 }
 
-double adhesion_energy_bound(double adhesion, double mass, double spacing, double h) {
-  // The first layer at d / 2 from the wall, the wall's layers at d / 2, 3 d / 2, ... behind it: one column of
-  // the binding sum (half_lattice_binding's k = 0).
-  long n = 0;
-  while (double(n) * spacing < h) ++n;
-  double sum = 0.0;
-  for (long l = 0; l <= n; ++l)
-    for (long j = -n; j <= n; ++j)
-      for (long i = -n; i <= n; ++i) {
-        const double dy = double(l + 1) * spacing;
-        const double r2 = double(i * i + j * j) * spacing * spacing + dy * dy;
-        if (r2 < h * h) sum += akinci_adhesion_potential_shape(std::sqrt(r2) / h);
-      }
+double adhesion_first_layer_energy(double adhesion, double mass, double spacing, double h) {
+  // The first layer at d / 2 from the wall, the wall's layers at d / 2, 3 d / 2, ... behind it.
+  const double sum = half_lattice_binding(
+      spacing, h, [&](double r2) { return akinci_adhesion_potential_shape(std::sqrt(r2) / h); }, true);
   return adhesion * mass * h * sum;
 }
 

@@ -17,8 +17,8 @@ namespace sph {
 double akinci_cohesion_potential_shape(double q);
 
 // int_q^1 a(s) ds of the adhesion kernel's shape a (kernels.h, akinci_adhesion_shape), 0 <= q <= 1: with s = 3/4 -
-// cos(phi) / 4, a = sqrt(sin(phi) / 2), a smooth integrand in phi (Simpson, 512 intervals; relative error
-// below 1e-6, tests/test_kernels.cpp).
+// cos(phi) / 4, a = sqrt(sin(phi) / 2), a smooth integrand in phi (Simpson, 512 intervals; within 1e-5 of
+// the midpoint rule on the kernel itself, tests/test_adhesion.cpp).
 double akinci_adhesion_potential_shape(double q);
 
 // The adhesion constant k_a [m/(kg s^2)] of a fluid with cohesion constant `cohesion` (its fluids.N.cohesion,
@@ -41,7 +41,7 @@ double adhesion_constant(double cohesion, double contact_angle_deg, double spaci
 // over the wall's half-lattice. The energy budget (simulation.cpp) counts it for every particle, as if each
 // could reach a wall. An estimate, not a bound on one particle: one pressed closer than a spacing to the wall
 // binds more (15% at 0.9 d), one in an edge or a corner of walls about 2 or 3 times as much.
-double adhesion_energy_bound(double adhesion, double mass, double spacing, double h);
+double adhesion_first_layer_energy(double adhesion, double mass, double spacing, double h);
 
 // Per particle of ps, its cohesive energy above that of a particle inside a cubic lattice of spacing d
 // filled with its fluid [J/kg], e_a = 1/2 sum_b u(r_ab) over the particles of its fluid, (e_a - e_bulk) / m_a,

@@ -24,13 +24,14 @@ double lattice_sum(double d, double h, F f) {
 // The binding of two half-lattices: the sum of f(r^2) over the pairs (a, b) with a in one column of the upper
 // half (layers at (k + 1/2) d, k >= 0) and b anywhere in the lower half (layers at -(l + 1/2) d), r^2 < h^2.
 // Times the pair potential's scale and over d^2 it is the work per area to pull the halves apart
-// (cohesion_energy.cpp: the calibration of the adhesion against the cohesion).
+// (cohesion_energy.cpp: the calibration of the adhesion against the cohesion). first_layer_only: a only in
+// the layer next to the lower half (k = 0), the binding of one particle there.
 template <class F>
-double half_lattice_binding(double d, double h, F f) {
+double half_lattice_binding(double d, double h, F f, bool first_layer_only = false) {
   long n = 0;
   while (double(n) * d < h) ++n;
   double sum = 0.0;
-  for (long k = 0; k <= n; ++k)
+  for (long k = 0; k <= (first_layer_only ? 0 : n); ++k)
     for (long l = 0; l <= n; ++l)
       for (long j = -n; j <= n; ++j)
         for (long i = -n; i <= n; ++i) {

@@ -91,7 +91,7 @@ void Simulation::rebase_energy(const ParticleState& ps) {
   double adhesion[kMaxFluids] = {};
   for (int32_t k = 0; k < c.num_fluids; ++k)
     if (c.fluids[k].adhesion > 0.0f)
-      adhesion[k] = adhesion_energy_bound(c.fluids[k].adhesion, c.fluids[k].mass, setup_.spacing, c.kernel.h);
+      adhesion[k] = adhesion_first_layer_energy(c.fluids[k].adhesion, c.fluids[k].mass, setup_.spacing, c.kernel.h);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.age[i] >= kRemovedAge) continue;
     const FluidConstants& f = c.fluids[ps.fluid[i]];
