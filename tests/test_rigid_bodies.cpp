@@ -62,11 +62,16 @@ TEST_CASE("rigid bodies: a free body and the fluid exchange momentum and conserv
   // fluid, as the body's step, so that each step's exchange is exactly the reaction. Under DFSPH the body
   // gets the reaction to the total each solve applied, which equals the sum of its iterations up to
   // round-off.
-  const std::string solver = GENERATE(std::string("wcsph"), std::string("dfsph"));
+  // With a surface tension and a contact angle, the adhesion to the body's particles (forces.h, boundary_pair)
+  // must come back to the body as well (issue 15).
+  const std::string solver = GENERATE(std::string("wcsph"), std::string("dfsph"), std::string("wcsph with adhesion"));
   INFO("solver " << solver);
-  sph::Scene scene = scene_file("hydrostatic_tank.json", {"sph.walls=particles", "gravity=[0,0,0]",
-                                                          "integrator=semi_implicit_euler", "emitters.0.velocity=[0.5,0,0]",
-                                                          "resolution.particles_across=8", "solver=" + solver});
+  const bool adhesion = solver == "wcsph with adhesion";
+  std::vector<std::string> sets = {"sph.walls=particles", "gravity=[0,0,0]", "integrator=semi_implicit_euler",
+                                   "emitters.0.velocity=[0.5,0,0]", "resolution.particles_across=8",
+                                   "solver=" + (adhesion ? std::string("wcsph") : solver)};
+  if (adhesion) sets.insert(sets.end(), {"fluids.0.surface_tension=1", "fluids.0.contact_angle=30"});
+  sph::Scene scene = scene_file("hydrostatic_tank.json", sets);
   scene.boundaries.clear();
   sph::BodySpec box;
   box.min = {0.06, 0.03, 0.01};
