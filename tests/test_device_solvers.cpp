@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/viscous_limit.h"
 #include "device_compare.h"
 #include "physics_helpers.h"
 
@@ -56,6 +57,13 @@ TEST_CASE("device solvers: DFSPH with mirror walls and Morris viscosity, no warm
                                                                 "sph.viscosity=morris", "dfsph.warm_start=false"});
   REQUIRE(scene.mirror_walls);
   check_solver_case(scene, 40);
+}
+
+TEST_CASE("device solvers: DFSPH at 2.6 ms steps, its artificial viscosity sub-cycled", "[device][solvers]") {
+  const sph::Scene scene = scene_file("hydrostatic_tank.json", {"resolution.particles_across=8", "solver=dfsph",
+                                                                "time_step.mode=fixed", "time_step.dt=0.0026"});
+  REQUIRE(sph::viscous_substeps(double(sph::create_setup(scene, 1.0).constants.artificial_rate), 0.0026) > 1);
+  check_solver_case(scene, 30);
 }
 
 TEST_CASE("device solvers: PBF at 4 ms with XSPH and vorticity confinement", "[device][solvers]") {

@@ -153,3 +153,96 @@ TEST_CASE("the incompressible solvers' step is [BK15]'s CFL step, capped, withou
   CHECK(sph::choose_incompressible_step(t, 0.01, rate, 100.0).dt == 0.004);
 }
 
+
+namespace {
+
+// The cube of viscous_cube with Monaghan's artificial viscosity alpha instead (c0 = 20 m/s, no laminar
+// viscosity).
+sph::Scene artificial_cube(double alpha) {
+  const std::string json = R"({
+    "name": "artificial_cube",
+    "fluids": [ { "name": "water", "rest_density": 1000, "speed_of_sound": 20, "viscosity": 0, "artificial_viscosity": )" +
+                           std::to_string(alpha) + R"( } ],
+    "emitters": [ { "type": "box", "fluid": "water", "min": [0, 0, 0], "max": [0.1, 0.1, 0.1] } ],
+    "resolution": { "particles_across": 10, "neighbours": 32 },
+    "sph": { "viscosity": "artificial", "negative_pressure": "clamp" },
+    "time_step": { "mode": "adaptive", "max": 1e-3 }
+  })";
+  return sph::parse_scene(json, "artificial_cube.json");
+}
+
+// The fastest rate of the artificial viscosity as the real force code applies it (forces.h), by power
+// iteration on the three velocity components: v <- (acc(0) - acc(v)) / |.|, the rate the norm of that. The
+// term acts on approaching pairs only, so the operator is not linear; the iteration finds the velocity
+// field it damps fastest.
+double measured_artificial_rate(const sph::Scene& scene) {
+  sph::Setup setup = sph::create_setup(scene, 0.1);
+  sph::ParticleState state = setup.particles;
+  const std::size_t n = state.size();
+  auto accelerations = [&](const std::vector<sph::Vec3>& v) {
+    for (std::size_t i = 0; i < n; ++i) state.vel[i] = v[std::size_t(state.id[i])];
+    sph::CpuBackend backend(setup.constants);
+    backend.upload(state);
+    backend.initialise_forces();
+    const sph::ParticleState& out = backend.download();
+    std::vector<sph::Vec3> a(n);
+    for (std::size_t i = 0; i < n; ++i) a[std::size_t(out.id[i])] = out.acc[i];
+    return a;
+  };
+  const std::vector<sph::Vec3> a0 = accelerations(std::vector<sph::Vec3>(n, sph::Vec3{0.0f, 0.0f, 0.0f}));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  std::vector<sph::Vec3> v(n);
+  for (sph::Vec3& x : v) x = sph::Vec3{uniform(rng), uniform(rng), uniform(rng)};
+  double rate = 0.0;
+  for (int iter = 0; iter < 150; ++iter) {
+    double norm = 0.0;
+    for (const sph::Vec3& x : v) norm += double(sph::length2(x));
+    const float scale = float(1.0 / std::sqrt(norm));
+    for (sph::Vec3& x : v) x = scale * x;
+    const std::vector<sph::Vec3> a = accelerations(v);
+    double norm_lv = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      v[i] = a0[i] - a[i];
+      norm_lv += double(sph::length2(v[i]));
+    }
+    rate = std::sqrt(norm_lv);
+  }
+  return rate;
+}
+
+}  // namespace
+
+TEST_CASE("the artificial viscosity's lattice rate bounds the fastest mode of its operator", "[timestep]") {
+  // artificial_viscous_rate takes every pair as approaching (a linear operator, the largest eigenvalue of
+  // its 3 x 3 symbol); the real term damps approaching pairs only. The bound must hold, and not by a margin
+  // so wide that DFSPH sub-cycles needlessly. Measured on the cube: 0.73 of the bound (2026-11-30).
+  const sph::Scene scene = artificial_cube(0.2);
+  const sph::Setup setup = sph::create_setup(scene, 0.1);
+  const double bound = double(setup.constants.artificial_rate);
+  const double measured = measured_artificial_rate(scene);
+  INFO("lattice bound " << bound << " 1/s, measured on the cube " << measured << " 1/s");
+  CHECK(measured <= bound);
+  CHECK(measured >= 0.5 * bound);
+  // It scales as alpha c0 / d: twice alpha, twice the rate; half the spacing, twice the rate.
+  CHECK(sph::create_setup(artificial_cube(0.4), 0.1).constants.artificial_rate == Approx(2.0 * bound).epsilon(1e-5));
+  sph::Scene fine = artificial_cube(0.2);
+  fine.particles_across = 20;
+  CHECK(sph::create_setup(fine, 0.1).constants.artificial_rate == Approx(2.0 * bound).epsilon(1e-3));
+  CHECK(sph::create_setup(artificial_cube(0.0), 0.1).constants.artificial_rate == 0.0f);
+  // WCSPH's sound-speed step stays below the bound: 0.4 h / c0 against 2 / lambda_max.
+  CHECK(scene.time_step.cfl_sound * setup.h / setup.max_speed_of_sound < sph::kViscousStabilityBound / bound);
+}
+
+TEST_CASE("DFSPH's sub-steps keep every explicit viscous update within the stability bound", "[timestep]") {
+  // n = ceil(rate dt / 2), at least 1: rate dt / n <= 2, and n - 1 sub-steps would exceed it.
+  for (const double rate : {0.0, 100.0, 1589.9, 1e5}) {
+    for (const double dt : {1e-4, 1e-3, 2.63e-3, 0.01}) {
+      const int32_t n = sph::viscous_substeps(rate, dt);
+      INFO("rate " << rate << " 1/s, dt " << dt << " s: " << n << " sub-steps");
+      REQUIRE(n >= 1);
+      CHECK(rate * dt / n <= sph::kViscousStabilityBound * (1.0 + 1e-12));
+      if (n > 1) CHECK(rate * dt / (n - 1) > sph::kViscousStabilityBound);
+    }
+  }
+}

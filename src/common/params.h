@@ -181,6 +181,7 @@ struct SimConstants {
   int32_t csf_enabled;              // any fluid with surface_tension > 0 under the continuum surface force
   int32_t xsph_enabled;             // any fluid with xsph > 0
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
+  float artificial_rate;            // lambda_max of that term [1/s] (viscous_limit.h): DFSPH sub-cycles it
   Vec3 gravity;
   UserForce user_force;
   Solver solver;

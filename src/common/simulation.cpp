@@ -41,6 +41,8 @@ void SolverTotals::add(const SolverStats& s) {
   density_capped_steps += s.density_capped ? 1 : 0;
   divergence_capped_steps += s.divergence_capped ? 1 : 0;
   max_density_error = std::max(max_density_error, s.density_error);
+  substepped_steps += s.viscous_substeps > 1 ? 1 : 0;
+  max_viscous_substeps = std::max(max_viscous_substeps, s.viscous_substeps);
 }
 
 Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double run_time, const Frame* restart)
@@ -213,8 +215,10 @@ void Simulation::set_constants(const SimConstants& constants) {
     c_max = std::max(c_max, double(constants.fluids[f].speed_of_sound));
   setup_.max_speed_of_sound = c_max;
   setup_.viscous_rate = viscous_rate(constants, setup_.spacing, setup_.h, setup_.lattice_density);
+  setup_.constants.artificial_rate =
+      float(artificial_viscous_rate(constants, setup_.spacing, setup_.h, setup_.lattice_density));
   setup_.blowup_speed = fallback_blowup_speed(scene_, c_max, setup_.jets);
-  backend_->set_constants(constants);
+  backend_->set_constants(setup_.constants);
   if (gravity_changed || force_released) rebase_energy(backend_->download());
 }
 

@@ -90,4 +90,91 @@ inline double viscous_rate(const SimConstants& c, double spacing, double h, doub
   return rate;
 }
 
+// The largest eigenvalue of a symmetric 3 x 3 matrix (trigonometric solution of its characteristic cubic).
+inline double largest_symmetric_eigenvalue(const double m[3][3]) {
+  const double p1 = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
+  const double q = (m[0][0] + m[1][1] + m[2][2]) / 3.0;
+  const double p2 = (m[0][0] - q) * (m[0][0] - q) + (m[1][1] - q) * (m[1][1] - q) + (m[2][2] - q) * (m[2][2] - q) + 2.0 * p1;
+  const double p = std::sqrt(p2 / 6.0);
+  if (!(p > 0.0)) return q;
+  double b[3][3];
+  for (int u = 0; u < 3; ++u)
+    for (int v = 0; v < 3; ++v) b[u][v] = (m[u][v] - (u == v ? q : 0.0)) / p;
+  const double det = b[0][0] * (b[1][1] * b[2][2] - b[1][2] * b[2][1]) - b[0][1] * (b[1][0] * b[2][2] - b[1][2] * b[2][0]) +
+                     b[0][2] * (b[1][0] * b[2][1] - b[1][1] * b[2][0]);
+  const double phi = std::acos(std::max(-1.0, std::min(1.0, det / 2.0))) / 3.0;
+  return q + 2.0 * p * std::cos(phi);
+}
+
+// Monaghan's artificial viscosity (forces.h, artificial_viscosity_pair), taken on every pair as if all
+// approached (the term acts only on approaching pairs, so this bounds it from above): with it alone
+//   dv_a/dt = -sum_b K_ab xhat_ab xhat_ab^T (v_a - v_b),
+//   K_ab = alpha_ab cbar_ab h (m_b / rho_ab) r |dW/dr| / (r^2 + eps^2)   (Spiky dW/dr),
+// a graph Laplacian whose weights are 3 x 3 projections. On the unit cubic lattice its symbol at wave vector
+// k is the matrix sum_b K_u(r_b) xhat_b xhat_b^T (1 - cos k.x_b), K_u = H r |dW_u/dr| / (r^2 + eps^2 H^2),
+// H = h / d. This returns its largest eigenvalue over the Brillouin zone, sampled as lattice_viscous_symbol
+// samples it [units of 1/d^4]. Measured against runs: DFSPH's resting column (hydrostatic_tank.json,
+// alpha = 0.2, c0 = 15 m/s) blew up at steps of 2.6 ms, 2.1 times 2 / lambda_max, and ran at alpha = 0.1
+// (docs/results.md).
+inline double lattice_artificial_symbol(double h_over_d) {
+  const KernelCoeffs k = make_kernel_coeffs(h_over_d);
+  const int n = int(std::ceil(h_over_d));
+  struct Neighbour {
+    int x[3];
+    double w;
+  };
+  std::vector<Neighbour> nb;
+  for (int l = -n; l <= n; ++l)
+    for (int j = -n; j <= n; ++j)
+      for (int i = -n; i <= n; ++i) {
+        const double r = std::sqrt(double(i * i + j * j + l * l));
+        if (r <= 0.0 || r >= h_over_d) continue;
+        const double w = h_over_d * r * -double(spiky_dwdr(k, float(r))) / (r * r + double(kPairEps2) * k.h2);
+        nb.push_back(Neighbour{{i, j, l}, w / (r * r)});  // w / r^2: the projection's x x^T carries r^2
+      }
+  const int samples = 16;
+  const double pi = 3.14159265358979323846;
+  double best = 0.0;
+  for (int a = 0; a <= samples; ++a)
+    for (int b = 0; b <= a; ++b)
+      for (int c = 0; c <= b; ++c) {
+        const double kv[3] = {pi * a / samples, pi * b / samples, pi * c / samples};
+        double m[3][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+        for (const Neighbour& q : nb) {
+          const double f = q.w * (1.0 - std::cos(kv[0] * q.x[0] + kv[1] * q.x[1] + kv[2] * q.x[2]));
+          for (int u = 0; u < 3; ++u)
+            for (int v = 0; v < 3; ++v) m[u][v] += f * q.x[u] * q.x[v];
+        }
+        best = std::max(best, largest_symmetric_eigenvalue(m));
+      }
+  return best;
+}
+
+// lambda_max [1/s] of the artificial viscosity (0 where no fluid has one) for particles at their lattice
+// density rho_a = m_a lattice_density / d^3 (as viscous_rate): lambda = S alpha_ab cbar_ab (2 m_b / (m_a +
+// m_b)) / (lattice_density d), the largest over pairs of fluids, S = lattice_artificial_symbol(h / d).
+// WCSPH's sound-speed step keeps below it (2 / lambda_max is 4.8 times 0.4 h / c0 at alpha = 0.2, h = 1.95
+// d); DFSPH, whose steps have no sound limit, sub-cycles the viscosity instead (viscous_substeps).
+inline double artificial_viscous_rate(const SimConstants& c, double spacing, double h, double lattice_density) {
+  if (!c.artificial_enabled) return 0.0;
+  const double symbol = lattice_artificial_symbol(h / spacing);
+  double rate = 0.0;
+  for (int32_t a = 0; a < c.num_fluids; ++a)
+    for (int32_t b = 0; b < c.num_fluids; ++b) {
+      const FluidConstants &fa = c.fluids[a], &fb = c.fluids[b];
+      const double alpha = 0.5 * (double(fa.artificial_alpha) + double(fb.artificial_alpha));
+      const double cbar = 0.5 * (double(fa.speed_of_sound) + double(fb.speed_of_sound));
+      const double mass_ratio = 2.0 * double(fb.mass) / (double(fa.mass) + double(fb.mass));
+      rate = std::max(rate, symbol * alpha * cbar * mass_ratio / (lattice_density * spacing));
+    }
+  return rate;
+}
+
+// Sub-steps that keep an explicit viscous update within its stability bound: the least n >= 1 with
+// rate dt / n <= kViscousStabilityBound (rate [1/s], dt [s]).
+inline int32_t viscous_substeps(double rate, double dt) {
+  const double n = std::ceil(rate * dt / kViscousStabilityBound);
+  return n > 1.0 ? int32_t(std::min(n, 1e6)) : 1;
+}
+
 }  // namespace sph
