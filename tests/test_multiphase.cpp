@@ -76,11 +76,13 @@ TEST_CASE("two layers at density ratio 10 stay layered under DFSPH in the number
   const LayerRun r = run_layers(scene, 0.5);
   INFO("water top " << r.start.lower_top << " -> " << r.end.lower_top << " m, oil bottom " << r.start.upper_bottom << " -> "
                     << r.end.upper_bottom << " m; speeds at the end: 99th percentile " << r.v99_end << " m/s; largest over "
-                    << "the run " << r.v_max << " m/s");
+                    << "the run " << r.v_max << " m/s, after 0.25 s " << r.v_max_late << " m/s");
   CHECK(std::fabs(r.end.lower_top - r.start.lower_top) < r.spacing);
   CHECK(std::fabs(r.end.upper_bottom - r.start.upper_bottom) < r.spacing);
-  // DFSPH's own noise (single particles up to 1.1 m/s with both layers of density 1000, docs/results.md)
-  // exceeds the issue's 0.1 m/s for the fastest particle; the bulk must be at rest.
+  // The issue's 0.1 m/s for the fastest particle, as under WCSPH. Before the wall ghosts moved with their
+  // particles in DFSPH's density rate (src/common/dfsph.h), a particle in a corner of the floor rattled at up
+  // to 0.89 m/s here, and only the 99th percentile stayed below 0.1 m/s.
+  CHECK(r.v_max_late < 0.1);
   CHECK(r.v99_end < 0.1);
 }
 

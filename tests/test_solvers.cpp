@@ -76,7 +76,15 @@ TEST_CASE("DFSPH holds a resting column with mirror walls at rest density and he
   const sph::Scene scene = scene_file("hydrostatic_tank.json", sets);
   sph::Simulation sim(scene, cpu_factory(), 1.0);
   const double layer0 = top_layer_height(sim.particles()), d = sim.setup().spacing;
-  while (sim.time() < 1.0 - 1e-9) sim.advance();
+  // The fastest particle, sampled every 0.05 s over the second half: a column at rest stays at rest.
+  double fastest = 0.0, next_sample = 0.5;
+  while (sim.time() < 1.0 - 1e-9) {
+    sim.advance();
+    if (sim.time() >= next_sample) {
+      fastest = std::max(fastest, double(sph::measure(sim.setup().constants, sim.particles()).v_max));
+      next_sample += 0.05;
+    }
+  }
   const Column c = measure_column(sim);
   const double layer = top_layer_height(sim.particles());
   const sph::SolverTotals& t = sim.solver_totals();
@@ -86,19 +94,22 @@ TEST_CASE("DFSPH holds a resting column with mirror walls at rest density and he
                    << " s (WCSPH's " << dt_wcsph << " s); density iterations mean "
                    << double(t.density_iterations) / double(t.steps) << ", max " << t.max_density_iterations
                    << ", capped steps " << t.density_capped_steps << " (largest error a solve ended at "
-                   << t.max_density_error << "); viscous sub-steps at most " << t.max_viscous_substeps);
+                   << t.max_density_error << "); viscous sub-steps at most " << t.max_viscous_substeps
+                   << "; fastest particle after 0.5 s " << fastest << " m/s");
   REQUIRE(c.interior > 300);
   CHECK(std::fabs(c.mean) <= 5e-4);     // issue 12: at most 0.05% ([BK15] report 0.01%)
   CHECK(c.mean_abs <= 5e-4);
   CHECK(std::fabs(layer - layer0) <= d);  // height within one spacing
+  CHECK(t.density_capped_steps <= t.steps / 100);  // the solve converges (at most 1% of steps at the cap)
+  // At rest: 0.05 m/s is 5% of sqrt(g H) and a sixth of the speed of a fall through one spacing. Measured
+  // 0.014 to 0.021 m/s; with the wall ghosts at rest in the density rate a particle in a corner of the floor
+  // rattled at up to 0.67 m/s (src/common/dfsph.h).
+  CHECK(fastest <= 0.05);
   if (ten_times) {
     CHECK(mean_dt >= 10.0 * dt_wcsph * (1.0 - 1e-9));
     CHECK(t.max_viscous_substeps > 1);
-    // About 10% of these steps stop at the cap of 100 iterations (measured), none above 0.05% compression.
-    CHECK(t.max_density_error <= 5e-4);
   } else {
     CHECK(t.max_viscous_substeps == 1);
-    CHECK(t.density_capped_steps <= t.steps / 100);  // the solve converges (at most 1% of steps at the cap)
   }
 }
 

@@ -10,15 +10,19 @@
 // phase's packed records (pos_mass).
 //
 // Walls: with mirror walls (sph.walls = "mirror") the neighbours' wall ghosts (mirror_walls.h) stand for the
-// fluid beyond the wall. A ghost adds its mass to the density, pushes with its particle's stiffness as the
-// particle would (a_i -= m_b (kappa_i / rho_i + kappa_b / rho_b) grad W_ib, so the wall holds a hydrostatic
-// column), but is at rest in the density rate and in alpha (it counts in |sum m grad W|^2, not among the
-// neighbours that move in response): the solver's corrections then see the wall as solid, and alpha is the
-// Jacobi diagonal d(D rho_i / Dt) / d kappa_i but for the ghosts of i itself. Measured alternatives: ghosts
-// that moved with their particles (mirrored velocities) in the rate and alpha made that diagonal up to twice
-// alpha's at a wall, and the solve diverged in the corners of a resting column within 6 steps; ghosts that
-// pushed with kappa_i alone gave the wall no pressure gradient, so the column's edges, with a quarter of
-// their neighbours real, were squeezed up at 1 m/s.
+// fluid beyond the wall, each the image of its particle: it adds its mass to the density, pushes with its
+// particle's stiffness as the particle would (a_i -= m_b (kappa_i / rho_i + kappa_b / rho_b) grad W_ib, so the
+// wall holds a hydrostatic column) and moves with its particle's mirrored velocity (mirror_velocity) in the
+// density rate, so the rate is the time derivative of the density the next step measures. In alpha a ghost
+// counts in |sum m grad W|^2, not among the neighbours that move in response, except the ghosts of i itself:
+// they move with v_i mirrored and push with kappa_i twice, so d(D rho_i / Dt) / d kappa_i takes their
+// gradient twice in that sum. Measured on the resting column (hydrostatic_tank.json, 2026-11-30): with the
+// ghosts at rest in the rate a particle in a corner of the floor, whose seven images all move when it does,
+// rattled along the diagonal at up to 0.67 m/s and its density swung from -19% to +5%; with its own images
+// moving the fastest particle moves at 0.02 m/s (two fluids of density ratio 10: 0.89 m/s before, 0.04
+// after). Earlier alternatives: ghosts moving in the rate with alpha unchanged blew the column up within
+// 0.01 s; ghosts that pushed with kappa_i alone gave the wall no pressure gradient, so the column's edges,
+// with a quarter of their neighbours real, were squeezed up at 1 m/s.
 
 // Several fluids (SimConstants::number_density, [SP08]; density.h and forces.h for WCSPH): every neighbour
 // counts with particle i's mass m_i in the density, its rate and alpha, and the pressure acceleration takes
@@ -81,7 +85,7 @@ SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, c
 }
 
 // Seed eq. 9 ([BK15] alpha factor): alpha_i = rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2),
-// rho_i = p.density[i] (dfsph_density); wall ghosts in the first sum only (see above). Depends on positions
+// rho_i = p.density[i] (dfsph_density); wall ghosts in the first sum only, i's own images twice (see above). Depends on positions
 // only: computed once per step after the grid and shared by both solvers. Returns 0 where the denominator is below kDfsphAlphaEps
 // (isolated particle). [m^5/kg]
 SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
@@ -98,7 +102,9 @@ SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, con
   const Vec3 xi = xyz(p.pos_mass[i]);
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    if (r2 > 0.0f) sum_grad += (dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    // i's own images twice (above): they move with i and push with kappa_i twice.
+    const float weight = j == i ? 2.0f : 1.0f;
+    if (r2 > 0.0f) sum_grad += (weight * dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
@@ -130,7 +136,8 @@ SPH_HD inline int32_t dfsph_support(const SimConstants& c, const GridView& grid,
 }
 
 // Seed eq. 18: D rho_i / Dt = sum_j m_j (v_i - v_j) . grad W_ij, with the velocities vel (the solver's
-// predicted v*, not necessarily p.vel); wall ghosts are at rest, so a particle approaching a wall compresses.
+// predicted v*, not necessarily p.vel); wall ghosts move with their particles' mirrored velocities, so a
+// particle approaching a wall compresses against its own image at twice its speed.
 // Positive: compression. Exact zero for a rigid translation without walls; for a rigid rotation
 // each pair's term is zero (v_i - v_j is perpendicular to x_ij), so zero to round-off. [kg/(m^3 s)]
 SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& grid, const ParticleView& p,
@@ -144,8 +151,10 @@ SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& gr
   });
   const Vec3 xi = xyz(p.pos_mass[i]);
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
-  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    if (r2 > 0.0f) rate += dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi, xi - xg);
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t image, Vec3 xg, float r2) {
+    if (r2 > 0.0f)
+      rate += dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2)) *
+              dot(vi - mirror_velocity(walls, image, vel[j]), xi - xg);
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
