@@ -66,6 +66,12 @@ TEST_CASE("device solvers: DFSPH at 2.6 ms steps, its artificial viscosity sub-c
   check_solver_case(scene, 30);
 }
 
+TEST_CASE("device solvers: DFSPH with the continuum surface force on a free drop", "[device][solvers][surface_tension]") {
+  const sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=8", "solver=dfsph",
+                                                                "sph.surface_tension=csf"});
+  check_solver_case(scene, 40);
+}
+
 TEST_CASE("device solvers: PBF at 4 ms with XSPH and vorticity confinement", "[device][solvers]") {
   const sph::Scene scene =
       scene_file("dam_break.json", {"resolution.particles_across=10", "solver=pbf", "time_step.mode=fixed",

@@ -3,7 +3,8 @@
 // of water without gravity (scenes/drop_oscillation.json) pulls itself into a sphere of its own volume at two
 // resolutions without gaining more kinetic energy than the surface energy it releases; the set-up counts
 // that energy into the run's budget and refuses a fluid too soft for its sigma. What the model does not
-// do (Rayleigh's oscillation, Laplace's pressure) is measured in docs/results.md.
+// do (Rayleigh's oscillation, Laplace's pressure) is measured in docs/results.md; the continuum surface
+// force does both (below: Laplace's pressure under DFSPH).
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -46,6 +47,7 @@ struct DropRun {
   double initial_surface_energy = 0.0;  // sigma A_cube [J]
   double budget = 0.0;        // the run's energy budget [J]
   double spacing = 0.0;
+  double inner_pressure = 0.0;  // mean pressure of the particles within equivalent / 2 of the centre [Pa]
 };
 
 DropRun run_drop(int across, double seconds, std::vector<std::string> sets = {}) {
@@ -80,6 +82,14 @@ DropRun run_drop(int across, double seconds, std::vector<std::string> sets = {})
     out.outermost = std::max(out.outermost, std::sqrt(dx * dx + dy * dy + dz * dz));
   }
   out.radius = std::sqrt(5.0 / 3.0 * r2);
+  long inner = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const double dx = ps.pos[i].x - c[0], dy = ps.pos[i].y - c[1], dz = ps.pos[i].z - c[2];
+    if (dx * dx + dy * dy + dz * dz > 0.25 * out.equivalent * out.equivalent) continue;
+    out.inner_pressure += ps.pressure[i];
+    ++inner;
+  }
+  if (inner > 0) out.inner_pressure /= double(inner);
   return out;
 }
 
@@ -133,6 +143,28 @@ TEST_CASE("under DFSPH the continuum surface force pulls a cube into a ball of i
   CHECK(std::fabs(r.radius - r.equivalent) < 0.05 * r.equivalent);
   CHECK(r.outermost < r.equivalent + 0.75 * r.spacing);
   CHECK(r.ke_max < r.initial_surface_energy);
+}
+
+TEST_CASE("a resting drop's inner pressure follows Laplace's law under DFSPH with the continuum surface force",
+          "[surface_tension][dfsph]") {
+  // Issue 15: within 15% of 2 sigma / R, R the radius of the ball of the fluid's volume; at two resolutions
+  // (R = 3.8 h and 5.1 h). DFSPH's pressure is rho kappa of its density solve (the field the frames write).
+  // Measured 2026-11-30: +2.2% and +6.8% after 1 s. Under WCSPH the Tait pressure of the same ball is 29%
+  // high (below), and under DFSPH a drop of R = 2.9 h (the 0.075 m cube at this spacing) 31% high
+  // (docs/results.md).
+  const double sigma = 4.7;
+  for (int across : {12, 16}) {
+    const DropRun r = run_drop(across, 1.0, {"solver=dfsph", "sph.surface_tension=csf"});
+    const double laplace = 2.0 * sigma / r.equivalent;
+    INFO(across << " across: pressure within R / 2 " << r.inner_pressure << " Pa, 2 sigma / R = " << laplace
+                << " Pa (R = " << r.equivalent << " m), ratio " << r.inner_pressure / laplace);
+    CHECK(std::fabs(r.inner_pressure / laplace - 1.0) <= 0.15);
+  }
+  // The method where it fails: WCSPH's Tait pressure holds the same ball 29% above Laplace's (the pressure
+  // gradient at the free surface, docs/results.md).
+  const DropRun w = run_drop(12, 1.0, {"sph.surface_tension=csf"});
+  INFO("WCSPH, 12 across: " << w.inner_pressure << " Pa against " << 2.0 * sigma / w.equivalent << " Pa");
+  CHECK(w.inner_pressure > 1.15 * 2.0 * sigma / w.equivalent);
 }
 
 TEST_CASE("the energy budget counts the surface energy of the start", "[surface_tension][energy]") {
