@@ -2,6 +2,7 @@
 // Sphere impostor: discard outside the disc, reconstruct the sphere's normal and depth, Blinn-Phong shade.
 in vec3 v_colour;
 in vec3 v_centre;
+in float v_point_size;  // pixels
 
 uniform mat4 u_projection;
 uniform float u_radius;
@@ -13,6 +14,10 @@ out vec4 frag_colour;
 void main() {
   vec2 disc = gl_PointCoord * 2.0 - 1.0;
   disc.y = -disc.y;
+  // A sphere at most two pixels across covers a pixel or a few: shade it as its centre and discard nothing.
+  // The disc test at that size dropped the sphere whenever its centre fell near a pixel's corner (a fifth of
+  // them), and the shading varied with where in the pixel it fell: deep water drew dark and full of holes.
+  if (v_point_size <= 2.0) disc = vec2(0.0);
   float r2 = dot(disc, disc);
   if (r2 > 1.0) discard;
   if (u_flat == 1) {

@@ -172,3 +172,5 @@ if(SPH_WITH_OPENVDB)
 endif()
 sph_cli_test(demo_render_mesh_without_replay --exit 1 --stderr "--render mesh" --stderr "--replay"
   -- ${SPH_DEMO} --render mesh)
+sph_cli_test(demo_cull_bad_value --exit 1 --stderr "--cull" --stderr "auto"
+  -- ${SPH_DEMO} --cull sometimes)

@@ -16,6 +16,8 @@ struct DemoOptions {
   int substeps = 0;      // 0: about 1/60 s of simulated time per frame
   std::string colour = "speed";
   std::string render = "spheres";  // "spheres" or "surface" (screen-space fluid surface)
+  std::string cull = "auto";       // --replay: "auto" draws only the nearest particle of each pixel when that
+                                   // gives the same picture (render/occlusion_cull.h); "off" draws every one
   std::vector<std::string> sets;
   double budget_ms = 40.0;  // simulation time per frame [ms], finite and > 0
   std::string replay;       // non-empty: play this sph_run output folder's frames instead of simulating

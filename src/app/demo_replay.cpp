@@ -25,6 +25,7 @@
 #include "../render/camera.h"
 #include "../render/fluid_surface.h"
 #include "../render/mesh_renderer.h"
+#include "../render/occlusion_cull.h"
 #include "../render/particle_renderer.h"
 #include "../render/scene_lines.h"
 #include "../render/screenshot.h"
@@ -41,6 +42,11 @@ namespace {
 
 // A frame file stores about this many bytes a particle (frame_writer.h's record).
 constexpr double kFrameBytesPerParticle = 60.0;
+
+// --cull auto: cull hidden particles (occlusion_cull.h) while a sphere at the camera's target is at most this
+// many pixels across and the particles outnumber a quarter of the view's pixels; above that size a particle
+// behind another's centre can still show at its rim, and with fewer particles drawing them all is cheap.
+constexpr float kCullDiameterPixels = 2.0f;
 
 }  // namespace
 
@@ -144,12 +150,13 @@ class Replay {
     if (mesh_) show_mesh();
     const auto d0 = std::chrono::steady_clock::now();
     const FrameView f = begin_frame(window_, camera_);
+    upload(f);
     lines_.draw(f.view, f.projection);
     if (mesh_) meshes_.draw(f.view, f.projection, look_.colour);
     else if (surface_)
       surface_renderer_.draw(particles_, f.view, f.projection, radius_, camera_.distance, lo_, hi_, f.width, f.height, look_,
                              f.background());
-    else particles_.draw(f.view, f.projection, radius_, f.height, flat_);
+    else particles_.draw(f.view, f.projection, radius_, f.height, flat_, culled_ ? 2.0f : 1.0f);
     panel();
     glFinish();  // so that the drawing time is the renderer's, not only the commands' submission
     draw_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - d0).count();
@@ -200,7 +207,7 @@ class Replay {
     std::cout << "replay: " << rec_.folder << "\nscene: " << rec_.frames.front().info.scene << "\nframes: " << frames_
               << "\nrecorded_frames: " << rec_.frames.size() << "\nshown_frame: " << index_
               << "\nparticles: " << rec_.frames[index_].particles.size() << "\nreplay_time: " << clock_
-              << "\nfps: " << fps_ << "\ndraw_ms_per_frame: " << draw_ms_ << "\n";
+              << "\ndrawn_particles: " << particles_.count() << "\nfps: " << fps_ << "\ndraw_ms_per_frame: " << draw_ms_ << "\n";
     if (mesh_) std::cout << "mesh: " << rec_.surfaces[shown_mesh_].path << "\nmesh_triangles: " << meshes_.triangles() << "\n";
   }
 
@@ -260,8 +267,29 @@ class Replay {
   void show(std::size_t k, bool always = false) {
     if (k == index_ && !always && shown_colour_ >= 0) return;
     index_ = k;
-    legend_ = particles_.upload(rec_.frames[k].particles, constants_, ColourMode(colour_));
     shown_colour_ = colour_;
+    stale_ = true;
+  }
+  // Uploads the shown frame for this view: every particle, or, where --cull auto finds it gives the same
+  // picture (kCullDiameterPixels), only the nearest of each pixel (occlusion_cull.h), culled again whenever
+  // the frame, the colour or the view changes. The surface needs every particle (its thickness pass).
+  void upload(const FrameView& f) {
+    const ParticleState& ps = rec_.frames[index_].particles;
+    const bool cull = opt_.cull == "auto" && !surface_ && !mesh_ &&
+                      ps.size() > std::size_t(f.width) * std::size_t(f.height) / 4 &&
+                      projected_diameter(f.projection, f.height, radius_, camera_.distance) <= kCullDiameterPixels;
+    if (!cull) {
+      if (stale_ || culled_) legend_ = particles_.upload(ps, constants_, ColourMode(colour_));
+      stale_ = culled_ = false;
+      return;
+    }
+    if (!stale_ && culled_ && f.view == cull_view_ && f.projection == cull_projection_) return;
+    front_particles(ps.pos, f.view, f.projection, f.width, f.height, cull_buffers_, front_);
+    legend_ = particles_.upload(ps, constants_, ColourMode(colour_), &front_);
+    cull_view_ = f.view;
+    cull_projection_ = f.projection;
+    stale_ = false;
+    culled_ = true;
   }
   // The latest mesh at or before the shown frame's time (the first one before any).
   void show_mesh() {
@@ -314,6 +342,8 @@ class Replay {
     }
     if (!surface_ && legend_.unit && *legend_.unit) ImGui::Text("colour scale: %.3g to %.3g %s", legend_.lo, legend_.hi, legend_.unit);
     ImGui::Text("%.1f fps, drawing %.1f ms", fps_, draw_ms_);
+    if (culled_) ImGui::Text("drawing the nearest %d of %zu particles (--cull)", int(particles_.count()),
+                             rec_.frames[index_].particles.size());
     ImGui::TextWrapped("%s", note_.c_str());
     ImGui::End();
     ImGui::Render();
@@ -337,6 +367,10 @@ class Replay {
   std::size_t index_ = 0;
   double clock_ = 0.0, speed_ = 1.0, fps_ = 0.0, draw_ms_ = 0.0, last_x_ = 0.0, last_y_ = 0.0;
   int colour_ = int(ColourMode::Speed), shown_colour_ = -1;
+  bool stale_ = true, culled_ = false;  // the upload is not the shown frame's; it holds only the culled set
+  CullBuffers cull_buffers_;
+  std::vector<uint32_t> front_;
+  Mat4 cull_view_{}, cull_projection_{};
   float radius_ = 0.01f;
   bool playing_ = true, loop_ = true, flat_ = false, surface_ = false, mesh_ = false;
   long frames_ = 0;

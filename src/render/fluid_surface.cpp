@@ -112,6 +112,7 @@ void FluidSurfaceRenderer::draw(const ParticleRenderer& particles, const Mat4& v
     glUniformMatrix4fv(p.uniform("u_projection"), 1, GL_FALSE, projection.data());
     glUniform1f(p.uniform("u_radius"), r);
     glUniform1f(p.uniform("u_viewport_height"), float(height));
+    glUniform1f(p.uniform("u_min_size"), 1.0f);
   };
 
   // 1. Eye depth of the nearest sphere surface.

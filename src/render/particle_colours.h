@@ -39,14 +39,19 @@ inline ColourRange colour_range(const ParticleState& ps, ColourMode mode) {
   return {};
 }
 
-// One colour per particle of ps (same order) by particle_colour, the definition the interop kernel uses.
-// c: the constants ps was simulated with (rest densities, grid); out is resized to ps.size().
+// Particle i's colour by particle_colour, the definition the interop kernel uses. c: the constants ps was
+// simulated with (rest densities, grid).
+inline Vec3 colour_of(const ParticleState& ps, const SimConstants& c, ColourMode mode, const ColourRange& range,
+                      std::size_t i) {
+  return particle_colour(mode, range.lo, range.hi, length(ps.vel[i]), ps.density[i], c.fluids[ps.fluid[i]].rest_density,
+                         ps.pressure[i], ps.fluid[i], cell_index(c.grid, ps.pos[i]));
+}
+
+// One colour per particle of ps (same order); out is resized to ps.size().
 inline void colour_particles(const ParticleState& ps, const SimConstants& c, ColourMode mode, const ColourRange& range,
                              std::vector<Vec3>& out) {
   out.resize(ps.size());
-  for (std::size_t i = 0; i < ps.size(); ++i)
-    out[i] = particle_colour(mode, range.lo, range.hi, length(ps.vel[i]), ps.density[i], c.fluids[ps.fluid[i]].rest_density,
-                             ps.pressure[i], ps.fluid[i], cell_index(c.grid, ps.pos[i]));
+  for (std::size_t i = 0; i < ps.size(); ++i) out[i] = colour_of(ps, c, mode, range, i);
 }
 
 }  // namespace sph::render

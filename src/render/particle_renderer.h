@@ -22,12 +22,18 @@ class ParticleRenderer {
   ParticleRenderer(const ParticleRenderer&) = delete;
   ParticleRenderer& operator=(const ParticleRenderer&) = delete;
 
-  // Colours the particles on the host and uploads positions and colours. Returns the colour range used
+  // Colours the particles on the host and uploads positions and colours; with `subset`, only the particles
+  // of those indices (occlusion_cull.h), coloured on the range of all of them. Returns the colour range used
   // (for the legend).
-  ColourRange upload(const ParticleState& ps, const SimConstants& c, ColourMode mode);
+  ColourRange upload(const ParticleState& ps, const SimConstants& c, ColourMode mode,
+                     const std::vector<uint32_t>* subset = nullptr);
   // Uploads points of one colour (the walls' boundary particles).
   void upload_points(const std::vector<Vec3>& positions, Vec3 colour);
-  void draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat) const;
+  // min_size: the least point size in pixels: 1, or 2 for a set culled to one particle per pixel
+  // (occlusion_cull.h), whose sprites must cover their own pixel alone even where the culling's rounding of a
+  // centre on a pixel's edge and OpenGL's differ (1 left rows of holes on a lattice's face).
+  void draw(const Mat4& view, const Mat4& projection, float radius, int viewport_height, bool flat,
+            float min_size = 1.0f) const;
   // The particles as GL_POINTS with the program in use (the fluid surface's passes).
   void draw_points() const;
   GLsizei count() const { return count_; }
@@ -51,6 +57,7 @@ class ParticleRenderer {
   std::size_t capacity_ = 0;  // particles the VBOs hold
   uint32_t generation_ = 0;
   std::vector<Vec3> colours_;
+  std::vector<Vec3> positions_;  // the subset's positions
 };
 
 }  // namespace sph::render
