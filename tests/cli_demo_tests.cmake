@@ -174,3 +174,5 @@ sph_cli_test(demo_render_mesh_without_replay --exit 1 --stderr "--render mesh" -
   -- ${SPH_DEMO} --render mesh)
 sph_cli_test(demo_cull_bad_value --exit 1 --stderr "--cull" --stderr "auto"
   -- ${SPH_DEMO} --cull sometimes)
+sph_cli_test(demo_cull_without_replay --exit 1 --stderr "--cull" --stderr "--replay"
+  -- ${SPH_DEMO} --cull off)

@@ -62,7 +62,7 @@ TEST_CASE("device solvers: DFSPH with mirror walls and Morris viscosity, no warm
 TEST_CASE("device solvers: DFSPH at 2.6 ms steps, its artificial viscosity sub-cycled", "[device][solvers]") {
   const sph::Scene scene = scene_file("hydrostatic_tank.json", {"resolution.particles_across=8", "solver=dfsph",
                                                                 "time_step.mode=fixed", "time_step.dt=0.0026"});
-  REQUIRE(sph::viscous_substeps(double(sph::create_setup(scene, 1.0).constants.artificial_rate), 0.0026) > 1);
+  REQUIRE(sph::viscous_substeps(double(sph::create_setup(scene, 1.0).constants.substep_rate), 0.0026) > 1);
   check_solver_case(scene, 30);
 }
 

@@ -37,9 +37,9 @@ int parse_demo_options(int argc, char** argv, DemoOptions& o) {
                  "exported surface meshes (M toggles)")
       ->capture_default_str()->check(CLI::IsMember({"spheres", "surface", "mesh"}));
   app.add_option("--cull", o.cull,
-                 "with --replay: auto draws only the particle nearest the camera in each pixel while the spheres are\n"
-                 "at most 2 pixels across and the particles outnumber a quarter of the pixels (a 1M recording plays\n"
-                 "about ten times faster under software OpenGL); off draws every particle")
+                 "with --replay: auto draws only the particle nearest the camera in each pixel while a sphere at the\n"
+                 "camera's target is at most 2 pixels across and the particles outnumber a quarter of the pixels (a 1M\n"
+                 "recording played about 14 times faster under software OpenGL); off draws every particle")
       ->capture_default_str()->check(CLI::IsMember({"auto", "off"}));
   app.add_option("--budget-ms", o.budget_ms, "simulation time budget per frame, milliseconds")->capture_default_str();
   app.add_option("--set,-s", o.sets, "override a scene value, key=value (as sph_run)");
@@ -51,6 +51,10 @@ int parse_demo_options(int argc, char** argv, DemoOptions& o) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 1;  // --help: 0; every parse error is bad input (CLI11's own codes are 100+)
+  }
+  if (app.count("--cull") && o.replay.empty()) {
+    std::cerr << "error: --cull chooses how a recording is drawn: it goes with --replay DIR\n";
+    return 1;
   }
   if (o.frames < 0) {
     std::cerr << "error: --frames must be 0 (interactive) or a positive number of frames, got " << o.frames << "\n";

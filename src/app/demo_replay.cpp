@@ -272,10 +272,11 @@ class Replay {
   }
   // Uploads the shown frame for this view: every particle, or, where --cull auto finds it gives the same
   // picture (kCullDiameterPixels), only the nearest of each pixel (occlusion_cull.h), culled again whenever
-  // the frame, the colour or the view changes. The surface needs every particle (its thickness pass).
+  // the frame, the colour, the view or the window's size changes. The surface needs every particle (its
+  // thickness pass).
   void upload(const FrameView& f) {
     const ParticleState& ps = rec_.frames[index_].particles;
-    const bool cull = opt_.cull == "auto" && !surface_ && !mesh_ &&
+    const bool cull = opt_.cull == "auto" && !surface_ && !mesh_ && f.width > 0 && f.height > 0 &&
                       ps.size() > std::size_t(f.width) * std::size_t(f.height) / 4 &&
                       projected_diameter(f.projection, f.height, radius_, camera_.distance) <= kCullDiameterPixels;
     if (!cull) {
@@ -283,11 +284,15 @@ class Replay {
       stale_ = culled_ = false;
       return;
     }
-    if (!stale_ && culled_ && f.view == cull_view_ && f.projection == cull_projection_) return;
+    if (!stale_ && culled_ && f.view == cull_view_ && f.projection == cull_projection_ && f.width == cull_width_ &&
+        f.height == cull_height_)
+      return;
     front_particles(ps.pos, f.view, f.projection, f.width, f.height, cull_buffers_, front_);
     legend_ = particles_.upload(ps, constants_, ColourMode(colour_), &front_);
     cull_view_ = f.view;
     cull_projection_ = f.projection;
+    cull_width_ = f.width;
+    cull_height_ = f.height;
     stale_ = false;
     culled_ = true;
   }
@@ -371,6 +376,7 @@ class Replay {
   CullBuffers cull_buffers_;
   std::vector<uint32_t> front_;
   Mat4 cull_view_{}, cull_projection_{};
+  int cull_width_ = 0, cull_height_ = 0;
   float radius_ = 0.01f;
   bool playing_ = true, loop_ = true, flat_ = false, surface_ = false, mesh_ = false;
   long frames_ = 0;

@@ -228,10 +228,12 @@ void print_solver_summary(const Simulation& sim) {
   std::cout << "solver_density_error_max: " << t.max_density_error << "\n"
             << "solver_capped_steps: " << t.density_capped_steps << "\n";
   if (dfsph) std::cout << "divergence_capped_steps: " << t.divergence_capped_steps << "\n";
-  // Sub-cycled non-pressure forces (the artificial viscosity above its explicit bound; viscous_limit.h).
-  if (dfsph && t.substepped_steps > 0)
-    std::cout << "viscous_substeps: " << t.substepped_steps << " steps sub-cycled the non-pressure forces, at most "
-              << t.max_viscous_substeps << " sub-steps\n";
+  // DFSPH's sub-cycled non-pressure forces (the viscosities above their explicit bound; viscous_limit.h):
+  // the most sub-steps a step took, and how many steps took more than one (their extra force passes are
+  // timed in the predict phase).
+  if (dfsph)
+    std::cout << "viscous_substeps: max " << t.max_viscous_substeps << ", sub-cycled steps " << t.substepped_steps
+              << " of " << t.steps << "\n";
   if (t.density_capped_steps > 0)
     std::cerr << "warning: the " << (dfsph ? "density solver" : "constraint solve") << " did not converge in "
               << t.density_capped_steps << " of " << t.steps << " steps: it stopped at "

@@ -10,19 +10,20 @@
 // phase's packed records (pos_mass).
 //
 // Walls: with mirror walls (sph.walls = "mirror") the neighbours' wall ghosts (mirror_walls.h) stand for the
-// fluid beyond the wall, each the image of its particle: it adds its mass to the density, pushes with its
-// particle's stiffness as the particle would (a_i -= m_b (kappa_i / rho_i + kappa_b / rho_b) grad W_ib, so the
-// wall holds a hydrostatic column) and moves with its particle's mirrored velocity (mirror_velocity) in the
-// density rate, so the rate is the time derivative of the density the next step measures. In alpha a ghost
-// counts in |sum m grad W|^2, not among the neighbours that move in response, except the ghosts of i itself:
-// they move with v_i mirrored and push with kappa_i twice, so d(D rho_i / Dt) / d kappa_i takes their
-// gradient twice in that sum. Measured on the resting column (hydrostatic_tank.json, 2026-11-30): with the
-// ghosts at rest in the rate a particle in a corner of the floor, whose seven images all move when it does,
-// rattled along the diagonal at up to 0.67 m/s and its density swung from -19% to +5%; with its own images
-// moving the fastest particle moves at 0.02 m/s (two fluids of density ratio 10: 0.89 m/s before, 0.04
-// after). Earlier alternatives: ghosts moving in the rate with alpha unchanged blew the column up within
-// 0.01 s; ghosts that pushed with kappa_i alone gave the wall no pressure gradient, so the column's edges,
-// with a quarter of their neighbours real, were squeezed up at 1 m/s.
+// fluid beyond the wall, each the image of its particle: it adds its mass to the density and pushes with its
+// particle's stiffness as the particle would (a_i -= m_b (kappa_i / rho_i + kappa_b / rho_b) grad W_ib, so
+// the wall holds a hydrostatic column). In the density rate and in alpha the ghosts are at rest (alpha counts
+// them in |sum m grad W|^2, not among the neighbours that move in response), except the ghosts of i itself:
+// they move with v_i mirrored (mirror_velocity) in the rate, and since they also push with kappa_i twice,
+// d(D rho_i / Dt) / d kappa_i takes their gradient twice in that sum. Measured (hydrostatic_tank.json,
+// 2026-11-30): with every ghost at rest a particle in a corner of the floor, whose seven images move when it
+// does, rattled along the diagonal at up to 0.67 m/s, its density swinging by up to 19%; with its own images
+// moving, the fastest particle after 0.5 s moves at about 0.02 m/s. Every ghost moving with its particle in
+// the rate calmed the column too, but the dam break with mirror walls then blew up as its front reached the
+// far wall's floor edge (0.29 s): the moving ghosts of other particles add terms to d(D rho_i / Dt) /
+// d kappa_i that alpha does not hold. Earlier: ghosts moving in the rate with alpha unchanged blew the column
+// up within 0.01 s; ghosts that pushed with kappa_i alone gave the wall no pressure gradient, so the column's
+// edges, with a quarter of their neighbours real, were squeezed up at 1 m/s.
 
 // Several fluids (SimConstants::number_density, [SP08]; density.h and forces.h for WCSPH): every neighbour
 // counts with particle i's mass m_i in the density, its rate and alpha, and the pressure acceleration takes
@@ -136,8 +137,8 @@ SPH_HD inline int32_t dfsph_support(const SimConstants& c, const GridView& grid,
 }
 
 // Seed eq. 18: D rho_i / Dt = sum_j m_j (v_i - v_j) . grad W_ij, with the velocities vel (the solver's
-// predicted v*, not necessarily p.vel); wall ghosts move with their particles' mirrored velocities, so a
-// particle approaching a wall compresses against its own image at twice its speed.
+// predicted v*, not necessarily p.vel); wall ghosts are at rest but for i's own, which move with v_i
+// mirrored, so a particle approaching a wall compresses against its own image at twice its speed.
 // Positive: compression. Exact zero for a rigid translation without walls; for a rigid rotation
 // each pair's term is zero (v_i - v_j is perpendicular to x_ij), so zero to round-off. [kg/(m^3 s)]
 SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& grid, const ParticleView& p,
@@ -154,7 +155,7 @@ SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& gr
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t image, Vec3 xg, float r2) {
     if (r2 > 0.0f)
       rate += dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2)) *
-              dot(vi - mirror_velocity(walls, image, vel[j]), xi - xg);
+              dot(j == i ? vi - mirror_velocity(walls, image, vi) : vi, xi - xg);
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {

@@ -375,6 +375,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   }
   s.viscous_rate = viscous_rate(c, s.spacing, s.h, s.lattice_density);
   c.artificial_rate = float(artificial_viscous_rate(c, s.spacing, s.h, s.lattice_density));
+  c.substep_rate = float(double(c.artificial_rate) + s.viscous_rate);
   c.num_shapes = int32_t(scene.boundaries.size());
   for (std::size_t i = 0; i < scene.boundaries.size(); ++i) c.shapes[i] = scene.boundaries[i].shape;
   seal_obstacle_contacts(c.shapes, c.num_shapes, float(0.5 * s.spacing));

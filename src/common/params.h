@@ -181,7 +181,12 @@ struct SimConstants {
   int32_t csf_enabled;              // any fluid with surface_tension > 0 under the continuum surface force
   int32_t xsph_enabled;             // any fluid with xsph > 0
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
-  float artificial_rate;            // lambda_max of that term [1/s] (viscous_limit.h): DFSPH sub-cycles it
+  float artificial_rate;            // lambda_max of that term [1/s] (viscous_limit.h)
+  // DFSPH's sub-steps of its non-pressure forces (viscous_limit.h, viscous_substeps): the artificial and the
+  // laminar viscosity's lambda_max summed [1/s]. No further margin: the artificial term's bound is already
+  // above its real rate (0.73 of it measured), and with a margin of 0.5 (time_step.cfl_viscosity) the 16k dam
+  // break at cfl_velocity 0.6 blew up at 0.064 s where with the bound alone it ran (docs/results.md).
+  float substep_rate;
   Vec3 gravity;
   UserForce user_force;
   Solver solver;

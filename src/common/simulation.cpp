@@ -217,6 +217,7 @@ void Simulation::set_constants(const SimConstants& constants) {
   setup_.viscous_rate = viscous_rate(constants, setup_.spacing, setup_.h, setup_.lattice_density);
   setup_.constants.artificial_rate =
       float(artificial_viscous_rate(constants, setup_.spacing, setup_.h, setup_.lattice_density));
+  setup_.constants.substep_rate = float(double(setup_.constants.artificial_rate) + setup_.viscous_rate);
   setup_.blowup_speed = fallback_blowup_speed(scene_, c_max, setup_.jets);
   backend_->set_constants(setup_.constants);
   if (gravity_changed || force_released) rebase_energy(backend_->download());

@@ -153,8 +153,8 @@ inline double lattice_artificial_symbol(double h_over_d) {
 // lambda_max [1/s] of the artificial viscosity (0 where no fluid has one) for particles at their lattice
 // density rho_a = m_a lattice_density / d^3 (as viscous_rate): lambda = S alpha_ab cbar_ab (2 m_b / (m_a +
 // m_b)) / (lattice_density d), the largest over pairs of fluids, S = lattice_artificial_symbol(h / d).
-// WCSPH's sound-speed step keeps below it (2 / lambda_max is 4.8 times 0.4 h / c0 at alpha = 0.2, h = 1.95
-// d); DFSPH, whose steps have no sound limit, sub-cycles the viscosity instead (viscous_substeps).
+// WCSPH's sound-speed step keeps below it (2 / lambda_max is 4.8 times 0.4 h / c0 at alpha = 0.2, h = 1.97
+// d, the hydrostatic tank); DFSPH, whose steps have no sound limit, sub-cycles the viscosity instead (viscous_substeps).
 inline double artificial_viscous_rate(const SimConstants& c, double spacing, double h, double lattice_density) {
   if (!c.artificial_enabled) return 0.0;
   const double symbol = lattice_artificial_symbol(h / spacing);

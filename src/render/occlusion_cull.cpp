@@ -21,6 +21,8 @@ void front_particles(const std::vector<Vec3>& positions, const Mat4& v, const Ma
     if (!(depth > 0.0f)) continue;
     const float cx = p[0] * ex + p[4] * ey + p[8] * ez + p[12];
     const float cy = p[1] * ex + p[5] * ey + p[9] * ez + p[13];
+    const float cz = p[2] * ex + p[6] * ey + p[10] * ez + p[14];
+    if (!(cz >= -depth && cz <= depth)) continue;  // before the near plane or beyond the far one: OpenGL clips it
     const float sx = (cx / depth + 1.0f) * half_w, sy = (cy / depth + 1.0f) * half_h;
     if (!(sx >= 0.0f && sx < float(width) && sy >= 0.0f && sy < float(height))) continue;
     const std::size_t pixel = std::size_t(int(sy)) * std::size_t(width) + std::size_t(int(sx));

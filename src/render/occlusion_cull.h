@@ -28,8 +28,9 @@ struct CullBuffers {
 
 // Fills `out` with the indices, ascending, of the particles that are the nearest to the camera in their
 // pixel of a width x height view (view and projection: column-major OpenGL matrices), one per pixel that a
-// particle centre falls in; particles behind the camera or outside the view are left out. positions: world
-// coordinates [m]. width, height >= 1.
+// particle centre falls in; particles outside the view (beside it, before its near plane or beyond its far
+// one: where OpenGL clips them) are left out. The projection must be a perspective one (clip w = -z_view,
+// math3d.h). positions: world coordinates [m]. width, height >= 1.
 void front_particles(const std::vector<Vec3>& positions, const Mat4& view, const Mat4& projection, int width, int height,
                      CullBuffers& scratch, std::vector<uint32_t>& out);
 

@@ -284,8 +284,10 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
       // The non-pressure forces are explicit. The artificial viscosity's rate (scaled by c0, which no
       // DFSPH step is limited by) can exceed 2 / dt at large steps: the resting column at 2.6 ms, alpha 0.2,
       // blew up within 0.17 s. Sub-cycled then: n updates v += (dt / n) a(v), the forces recomputed
-      // between them at the same positions (viscous_limit.h, viscous_substeps); n = 1 below the bound.
-      const int32_t n = viscous_substeps(double(c.artificial_rate), double(dt));
+      // between them at the same positions, n from both viscosities' rates (SimConstants::substep_rate;
+      // viscous_limit.h, viscous_substeps); n = 1 below their bound, the same bits as without.
+      // A rigid body's reaction is still taken once, after the density solve (BodyReactionFn).
+      const int32_t n = viscous_substeps(double(c.substep_rate), double(dt));
       for (int32_t k = 1; k < n; ++k) {
         x.for_each(PredictVelocityFn{x.particles(), dt / float(n)});
         run_phase(x, Phase::Forces, dt, stats);
