@@ -39,36 +39,59 @@ inline double viscous_pair_kernel(ViscosityModel model, const KernelCoeffs& k, d
   return 2.0 * -double(spiky_dwdr(k, float(r))) / r * r2 / (r2 + double(kPairEps2) * k.h2);
 }
 
-// max over k of sum_b K(r_b) (1 - cos k.x_b) over the cubic lattice of unit spacing, K the pair kernel of
-// support h_over_d [units of 1/d^5]. The lattice is symmetric under permutations and sign changes of the
-// axes, so k is sampled on 0 <= k3 <= k2 <= k1 <= pi with 16 intervals per axis (the maxima of the
-// Mueller and Morris kernels lie at the sampled corners (pi, pi, 0) and (pi, pi, pi)).
-inline double lattice_viscous_symbol(ViscosityModel model, double h_over_d) {
-  const KernelCoeffs k = make_kernel_coeffs(h_over_d);
+// A site's neighbours on the cubic lattice of unit spacing within h_over_d: the offset and a pair weight.
+struct LatticeNeighbour {
+  int x[3];
+  double w;
+};
+
+// The neighbours with weight(r), r = |offset| in (0, h_over_d).
+template <class Weight>
+std::vector<LatticeNeighbour> lattice_neighbours(double h_over_d, Weight weight) {
   const int n = int(std::ceil(h_over_d));
-  struct Neighbour {
-    int i, j, l;
-    double w;
-  };
-  std::vector<Neighbour> nb;
+  std::vector<LatticeNeighbour> nb;
   for (int l = -n; l <= n; ++l)
     for (int j = -n; j <= n; ++j)
       for (int i = -n; i <= n; ++i) {
         const double r = std::sqrt(double(i * i + j * j + l * l));
-        if (r > 0.0 && r < h_over_d) nb.push_back(Neighbour{i, j, l, viscous_pair_kernel(model, k, r)});
+        if (r > 0.0 && r < h_over_d) nb.push_back(LatticeNeighbour{{i, j, l}, weight(r)});
       }
+  return nb;
+}
+
+// max over wave vectors k of symbol(k). The lattice is symmetric under permutations and sign changes of the
+// axes, so k is sampled on 0 <= k3 <= k2 <= k1 <= pi with 16 intervals per axis (the maxima of the
+// operators here lie at the sampled corners (pi, pi, 0) and (pi, pi, pi)).
+template <class Symbol>
+double max_over_brillouin_zone(Symbol symbol) {
   const int samples = 16;
   const double pi = 3.14159265358979323846;
   double best = 0.0;
   for (int a = 0; a <= samples; ++a)
     for (int b = 0; b <= a; ++b)
       for (int c = 0; c <= b; ++c) {
-        const double k1 = pi * a / samples, k2 = pi * b / samples, k3 = pi * c / samples;
-        double sum = 0.0;
-        for (const Neighbour& q : nb) sum += q.w * (1.0 - std::cos(k1 * q.i + k2 * q.j + k3 * q.l));
-        best = std::max(best, sum);
+        const double k[3] = {pi * a / samples, pi * b / samples, pi * c / samples};
+        best = std::max(best, symbol(k));
       }
   return best;
+}
+
+// 1 - cos k.x_b for a neighbour's offset.
+inline double lattice_phase_factor(const double k[3], const LatticeNeighbour& q) {
+  return 1.0 - std::cos(k[0] * q.x[0] + k[1] * q.x[1] + k[2] * q.x[2]);
+}
+
+// max over k of sum_b K(r_b) (1 - cos k.x_b) over the cubic lattice of unit spacing, K the pair kernel of
+// support h_over_d [units of 1/d^5].
+inline double lattice_viscous_symbol(ViscosityModel model, double h_over_d) {
+  const KernelCoeffs k = make_kernel_coeffs(h_over_d);
+  const std::vector<LatticeNeighbour> nb =
+      lattice_neighbours(h_over_d, [&](double r) { return viscous_pair_kernel(model, k, r); });
+  return max_over_brillouin_zone([&](const double kv[3]) {
+    double sum = 0.0;
+    for (const LatticeNeighbour& q : nb) sum += q.w * lattice_phase_factor(kv, q);
+    return sum;
+  });
 }
 
 // lambda_max [1/s] of the scene's viscosity (0 for none or artificial viscosity, which the sound limit
@@ -118,36 +141,19 @@ inline double largest_symmetric_eigenvalue(const double m[3][3]) {
 // (docs/results.md).
 inline double lattice_artificial_symbol(double h_over_d) {
   const KernelCoeffs k = make_kernel_coeffs(h_over_d);
-  const int n = int(std::ceil(h_over_d));
-  struct Neighbour {
-    int x[3];
-    double w;
-  };
-  std::vector<Neighbour> nb;
-  for (int l = -n; l <= n; ++l)
-    for (int j = -n; j <= n; ++j)
-      for (int i = -n; i <= n; ++i) {
-        const double r = std::sqrt(double(i * i + j * j + l * l));
-        if (r <= 0.0 || r >= h_over_d) continue;
-        const double w = h_over_d * r * -double(spiky_dwdr(k, float(r))) / (r * r + double(kPairEps2) * k.h2);
-        nb.push_back(Neighbour{{i, j, l}, w / (r * r)});  // w / r^2: the projection's x x^T carries r^2
-      }
-  const int samples = 16;
-  const double pi = 3.14159265358979323846;
-  double best = 0.0;
-  for (int a = 0; a <= samples; ++a)
-    for (int b = 0; b <= a; ++b)
-      for (int c = 0; c <= b; ++c) {
-        const double kv[3] = {pi * a / samples, pi * b / samples, pi * c / samples};
-        double m[3][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
-        for (const Neighbour& q : nb) {
-          const double f = q.w * (1.0 - std::cos(kv[0] * q.x[0] + kv[1] * q.x[1] + kv[2] * q.x[2]));
-          for (int u = 0; u < 3; ++u)
-            for (int v = 0; v < 3; ++v) m[u][v] += f * q.x[u] * q.x[v];
-        }
-        best = std::max(best, largest_symmetric_eigenvalue(m));
-      }
-  return best;
+  // K_u / r^2: the projection's x x^T carries r^2.
+  const std::vector<LatticeNeighbour> nb = lattice_neighbours(h_over_d, [&](double r) {
+    return h_over_d * r * -double(spiky_dwdr(k, float(r))) / (r * r + double(kPairEps2) * k.h2) / (r * r);
+  });
+  return max_over_brillouin_zone([&](const double kv[3]) {
+    double m[3][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    for (const LatticeNeighbour& q : nb) {
+      const double f = q.w * lattice_phase_factor(kv, q);
+      for (int u = 0; u < 3; ++u)
+        for (int v = 0; v < 3; ++v) m[u][v] += f * q.x[u] * q.x[v];
+    }
+    return largest_symmetric_eigenvalue(m);
+  });
 }
 
 // lambda_max [1/s] of the artificial viscosity (0 where no fluid has one) for particles at their lattice
