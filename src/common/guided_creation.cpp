@@ -354,7 +354,14 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.xsph = float(f.xsph);
     fc.lifetime = 0.0f;
     // Springs: k / m from the shear modulus (springs.h).
-    fc.spring_stiffness = float(spring_constant(f.spring_modulus, s.spacing, s.h) / double(fc.mass));
+    SpringLaw law{0.0, 0.0};
+    try {
+      law = spring_law(f.spring_modulus, s.spacing, s.h);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene.source + ": fluids." + std::to_string(i) + ".spring_modulus: " + e.what());
+    }
+    fc.spring_stiffness = float(law.stiffness / double(fc.mass));
+    fc.spring_exponent = float(law.exponent);
     fc.spring_yield = float(f.spring_yield);
     fc.spring_plasticity = float(f.spring_plasticity);
     if (f.near_stiffness > 0.0) c.near_enabled = 1;
@@ -476,7 +483,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   }
   sample_rigid_bodies(scene, c, s.spacing, particle_budget(scene), s.bodies, s.report);
   try {
-    s.springs = create_springs(c, s.particles);
+    s.springs = create_springs(c, s.particles, s.spacing);
   } catch (const std::invalid_argument& e) {
     throw SceneError(scene.source + ": resolution.neighbours: " + e.what());
   }

@@ -1,6 +1,6 @@
 // Sums over a cubic lattice of spacing d [m] around a lattice point, over the points closer than h [m]: the
 // bulk values set-up calibrates against (guided_creation.cpp: the kernel sum that sets the mass; springs.cpp:
-// the bonds' sum r^2 that sets a spring's stiffness; cohesion_energy.cpp: a bulk particle's cohesive energy).
+// the bonds' moments that set the springs' stiffness; cohesion_energy.cpp: a bulk particle's cohesive energy).
 #pragma once
 
 namespace sph {
@@ -17,6 +17,21 @@ double lattice_sum(double d, double h, F f) {
       for (long i = -n; i <= n; ++i) {
         const double r2 = double(i * i + j * j + k * k) * d * d;
         if (r2 < h * h) sum += f(r2);
+      }
+  return sum;
+}
+
+// sum of f(x, y, z) over the same offsets (x, y, z) = (i, j, k) d, in the same order as lattice_sum.
+template <class F>
+double lattice_sum_xyz(double d, double h, F f) {
+  long n = 0;
+  while (double(n) * d < h) ++n;
+  double sum = 0.0;
+  for (long k = -n; k <= n; ++k)
+    for (long j = -n; j <= n; ++j)
+      for (long i = -n; i <= n; ++i) {
+        const double r2 = double(i * i + j * j + k * k) * d * d;
+        if (r2 < h * h) sum += f(double(i) * d, double(j) * d, double(k) * d);
       }
   return sum;
 }

@@ -110,7 +110,8 @@ struct FluidConstants {
   float xsph;              // XSPH epsilon; 0 disables
   float lifetime;          // particles older than this are recycled [s]; 0 = never
   // Viscoelastic springs (springs.h, Clavet et al. 2005, thesis eq. 2.26); spring_stiffness 0: none.
-  float spring_stiffness;  // k / m [1/s^2], k from the fluid's shear modulus (springs.h, spring_constant)
+  float spring_stiffness;  // k / m [1/s^2] of a spring of rest length d, from the shear modulus (springs.h, spring_law)
+  float spring_exponent;   // p: a spring of rest length L has k (d / L)^p (springs.h, spring_law)
   float spring_yield;      // gamma: a spring deforms by up to gamma L before its rest length L yields
   float spring_plasticity; // alpha [1/s]: how fast a yielded rest length follows the deformation
 };

@@ -10,12 +10,52 @@
 
 namespace sph {
 
-double spring_constant(double modulus, double spacing, double h) {
-  const double sum_r2 = lattice_sum(spacing, h, [](double r2) { return r2; });  // the point itself adds 0
-  return sum_r2 > 0.0 ? 30.0 * modulus * spacing * spacing * spacing / sum_r2 : 0.0;
+SpringLaw spring_law(double modulus, double spacing, double h) {
+  if (!(modulus > 0.0)) return SpringLaw{0.0, 0.0};
+  const double d = spacing;
+  // sum_b (d / r)^p (x^4 - 3 x^2 y^2) / r^2: the cubic anisotropy C11 - C12 - 2 C44 (times 2 d^3 / k).
+  const auto anisotropy = [&](double p) {
+    return lattice_sum_xyz(d, h, [&](double x, double y, double z) {
+      const double r2 = x * x + y * y + z * z;
+      return r2 > 0.0 ? std::pow(d * d / r2, 0.5 * p) * (x * x * x * x - 3.0 * x * x * y * y) / r2 : 0.0;
+    });
+  };
+  const auto shear = [&](double p) {  // C44 = shear(p) k / (2 d^3)
+    return lattice_sum_xyz(d, h, [&](double x, double y, double z) {
+      const double r2 = x * x + y * y + z * z;
+      return r2 > 0.0 ? std::pow(d * d / r2, 0.5 * p) * x * x * y * y / r2 : 0.0;
+    });
+  };
+  if (!(shear(0.0) > 0.0))
+    throw std::invalid_argument("springs need bonds off the lattice's axes to carry shear: h must exceed sqrt(2) "
+                                "times the spacing (raise resolution.neighbours)");
+  // The first sign change on a scan of p, then bisection: the anisotropy is a sum of exponentials in p.
+  double lo = -8.0, hi = lo;
+  double g_lo = anisotropy(lo);
+  bool found = g_lo == 0.0;
+  for (double p = lo + 0.5; p <= 24.0 && !found; p += 0.5) {
+    const double g = anisotropy(p);
+    if ((g > 0.0) != (g_lo > 0.0) || g == 0.0) {
+      hi = p;
+      found = true;
+    } else {
+      lo = p;
+      g_lo = g;
+    }
+  }
+  if (!found)
+    throw std::invalid_argument("no spring law k (d / L)^p with p in [-8, 24] makes the spring network isotropic at "
+                                "this support (change resolution.neighbours)");
+  for (int it = 0; it < 60 && hi > lo; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if ((anisotropy(mid) > 0.0) == (g_lo > 0.0)) lo = mid;
+    else hi = mid;
+  }
+  const double p = 0.5 * (lo + hi);
+  return SpringLaw{2.0 * d * d * d * modulus / shear(p), p};
 }
 
-SpringNetwork create_springs(const SimConstants& c, const ParticleState& ps) {
+SpringNetwork create_springs(const SimConstants& c, const ParticleState& ps, double spacing) {
   SpringNetwork net;
   bool any = false;
   for (int32_t f = 0; f < c.num_fluids; ++f) any = any || c.fluids[f].spring_stiffness > 0.0f;
@@ -44,12 +84,17 @@ SpringNetwork create_springs(const SimConstants& c, const ParticleState& ps) {
   net.capacity = int32_t(std::max<std::size_t>(most, 1));
   net.partner.assign(std::size_t(num_ids) * std::size_t(net.capacity), -1);
   net.rest.assign(net.partner.size(), 0.0f);
+  net.stiffness.assign(net.partner.size(), 0.0f);
   net.index_of_id.assign(std::size_t(num_ids), -1);
   for (std::size_t a = 0; a < ps.size(); ++a) {
     const std::size_t base = std::size_t(ps.id[a]) * std::size_t(net.capacity);
     for (std::size_t s = 0; s < springs[a].size(); ++s) {
       net.partner[base + s] = springs[a][s].first;
-      net.rest[base + s] = springs[a][s].second;
+      const float rest = springs[a][s].second;
+      const FluidConstants& f = c.fluids[ps.fluid[a]];
+      net.rest[base + s] = rest;
+      net.stiffness[base + s] =
+          float(double(f.spring_stiffness) * std::pow(spacing / double(rest), double(f.spring_exponent)));
     }
     net.index_of_id[std::size_t(ps.id[a])] = int32_t(a);
   }

@@ -5,9 +5,12 @@
 // (Clavet's plasticity, so that a deformation held long enough is kept: the fluid flows, viscoelastically); a
 // spring whose rest length grows past h breaks. alpha = 0 is an elastic jelly.
 //
+// Unlike Clavet's, the springs' stiffness depends on their rest length at the start (spring_law below), so
+// that the network on the start's cubic lattice is isotropic with the shear modulus asked.
+//
 // Storage is by particle id, so that the grid's reorder never moves it: each id has `capacity` slots of
-// (partner id, rest length), both ends of a spring holding it with the same rest length (their updates are
-// the same arithmetic on the same |x_ab|, so they stay equal). index_of_id maps an id to the particle's
+// (partner id, rest length, stiffness), both ends of a spring holding it with the same rest length (their
+// updates are the same arithmetic on the same |x_ab|, so they stay equal) and the same stiffness. index_of_id maps an id to the particle's
 // place in the current order; the solver rebuilds it after each grid build (index_particle).
 #pragma once
 
@@ -26,6 +29,7 @@ struct SpringView {
   int32_t num_ids;       // ids below this may have springs (the particles present at the start)
   int32_t* partner;      // num_ids x capacity: the partner's id, or -1 (none or broken)
   float* rest;           // num_ids x capacity: rest length L [m]
+  float* stiffness;      // num_ids x capacity: the spring's k / m [1/s^2], fixed at the start (spring_law)
   int32_t* index_of_id;  // num_ids: the particle's index in the current order
 };
 
@@ -34,28 +38,44 @@ struct SpringNetwork {
   int32_t capacity = 0;
   std::vector<int32_t> partner;
   std::vector<float> rest;
+  std::vector<float> stiffness;
   std::vector<int32_t> index_of_id;
   bool empty() const { return capacity == 0; }
-  std::size_t bytes() const { return partner.size() * 8 + index_of_id.size() * 4; }
+  std::size_t bytes() const { return partner.size() * 12 + index_of_id.size() * 4; }
   SpringView view() {
-    return SpringView{capacity, int32_t(index_of_id.size()), partner.data(), rest.data(), index_of_id.data()};
+    return SpringView{capacity,    int32_t(index_of_id.size()), partner.data(), rest.data(), stiffness.data(),
+                      index_of_id.data()};
   }
 };
 
 // The most springs one particle may hold: at the default 32 neighbours a lattice particle has 26 within h.
 constexpr int32_t kMaxSpringsPerParticle = 64;
 
-// A spring's stiffness k [N/m] for a network of shear modulus G [Pa] on a cubic lattice of spacing d with
-// support h: under a uniform strain a bond of length r stretches by r eps cos^2(theta), and averaged over
-// directions (cos^4 -> 1/5) a central-force network stores sum_b k r_b^2 eps^2 / 20 per particle volume d^3:
-// C11 = sum_b k r_b^2 / (10 d^3), and with Cauchy's relation (lambda = mu) mu = C11 / 3. So
-// k = 30 G d^3 / sum_b r_b^2 over a lattice particle's bonds within h.
-double spring_constant(double modulus, double spacing, double h);
+// The springs' stiffness for a network of shear modulus G [Pa] on the cubic lattice of spacing d [m] that
+// set-up lays the particles on, with bonds to every lattice point within the support h [m]:
+// k(L) = stiffness (d / L)^exponent [N/m] for a spring of rest length L.
+// Under a small uniform strain eps a bond x (length r, stiffness k_b) stretches by x.eps.x / r and stores
+// k_b (x_i x_j x_k x_l / r^2) eps_ij eps_kl / 2; each bond is shared by two particles, so per particle volume
+// d^3 the network's elastic tensor is C_ijkl = sum_b k_b x_i x_j x_k x_l / (2 d^3 r_b^2). Central bonds give
+// C12 = C44 (Cauchy's relation, Poisson's ratio 1/4 if isotropic). On a cubic lattice the network is
+// isotropic only if C11 - C12 = 2 C44, i.e. sum_b k_b (x^4 - 3 x^2 y^2) / r_b^2 = 0. With one stiffness for
+// every bond (Clavet's springs) it is not: at h = 1.97 d, 2 C44 / (C11 - C12) = 2.33, and a jelly ball's
+// torsional period measured 0.94 of the isotropic theory's when twisted about a lattice axis and 1.28 about
+// a body diagonal (docs/results.md). So k_b = stiffness (d / r_b)^exponent, the exponent the root of that
+// sum (2.7 at 32 neighbours), and stiffness from C44 = G. Throws std::invalid_argument when h <= sqrt(2) d
+// (the bonds along the axes alone carry no shear) or when no exponent in [-8, 24] makes the sum vanish.
+// G = 0: {0, 0}.
+struct SpringLaw {
+  double stiffness;  // k at L = d [N/m]
+  double exponent;   // p
+};
+SpringLaw spring_law(double modulus, double spacing, double h);
 
 // Springs between every two particles of one fluid with spring_stiffness > 0 closer than h, with their
-// distance as rest length. Empty when no fluid has springs. Throws std::invalid_argument when a particle
-// would hold more than kMaxSpringsPerParticle springs. ps: the particles at the start (ids 0..n-1).
-SpringNetwork create_springs(const SimConstants& c, const ParticleState& ps);
+// distance L as rest length and k / m = spring_stiffness (d / L)^spring_exponent (spring_law; d: the
+// lattice spacing [m]). Empty when no fluid has springs. Throws std::invalid_argument when a particle would
+// hold more than kMaxSpringsPerParticle springs. ps: the particles at the start (ids 0..n-1).
+SpringNetwork create_springs(const SimConstants& c, const ParticleState& ps, double spacing);
 
 // After a grid build: particle i's place under its id.
 SPH_HD inline void index_particle(const SpringView& s, const ParticleView& p, int32_t i) {
@@ -91,7 +111,7 @@ SPH_HD inline Vec3 spring_acceleration(const SimConstants& c, const SpringView& 
       continue;
     }
     s.rest[slot] = rest;
-    acc -= (f.spring_stiffness * (r - rest) / r) * xij;
+    acc -= (s.stiffness[slot] * (r - rest) / r) * xij;
   }
   return acc;
 }

@@ -237,12 +237,14 @@ struct DeviceSprings {
   int32_t capacity = 0;
   DeviceVector<int32_t> partner;
   DeviceVector<float> rest;
+  DeviceVector<float> stiffness;
   DeviceVector<int32_t> index_of_id;
 
   void upload(const SpringNetwork& s) {
     capacity = s.capacity;
     partner.assign(s.partner.begin(), s.partner.end());
     rest.assign(s.rest.begin(), s.rest.end());
+    stiffness.assign(s.stiffness.begin(), s.stiffness.end());
     index_of_id.assign(s.index_of_id.begin(), s.index_of_id.end());
   }
   SpringNetwork download() const {
@@ -250,15 +252,18 @@ struct DeviceSprings {
     s.capacity = capacity;
     s.partner.resize(partner.size());
     s.rest.resize(rest.size());
+    s.stiffness.resize(stiffness.size());
     s.index_of_id.resize(index_of_id.size());
     thrust::copy(partner.begin(), partner.end(), s.partner.begin());
     thrust::copy(rest.begin(), rest.end(), s.rest.begin());
+    thrust::copy(stiffness.begin(), stiffness.end(), s.stiffness.begin());
     thrust::copy(index_of_id.begin(), index_of_id.end(), s.index_of_id.begin());
     return s;
   }
   SpringView view() {
     return SpringView{capacity, int32_t(index_of_id.size()), thrust::raw_pointer_cast(partner.data()),
-                      thrust::raw_pointer_cast(rest.data()), thrust::raw_pointer_cast(index_of_id.data())};
+                      thrust::raw_pointer_cast(rest.data()), thrust::raw_pointer_cast(stiffness.data()),
+                      thrust::raw_pointer_cast(index_of_id.data())};
   }
 };
 
