@@ -523,7 +523,7 @@ sph_cli_test(multiphase_soft_light_fluid
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/two_layers.json --set fluids.1.rest_density=1 --out ${SPH_CLI_OUT}/multiphase_soft)
 sph_cli_test(surface_tension_too_soft
   --exit 1 --stderr "fluids.0.speed_of_sound" --stderr "surface_tension" --stderr "at least"
-  -- ${SPH_RUN} ${SPH_CLI_SCENES}/drop_oscillation.json --set fluids.0.speed_of_sound=5 --out ${SPH_CLI_OUT}/sigma_soft)
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/drop_oscillation.json --set fluids.0.speed_of_sound=5 --set solver=wcsph --set sph.surface_tension=cohesion --out ${SPH_CLI_OUT}/sigma_soft)
 sph_cli_test(springs_dfsph_refused
   --exit 1 --stderr "fluids.0.spring_modulus" --stderr "wcsph"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=dfsph --out ${SPH_CLI_OUT}/springs_dfsph)

@@ -160,7 +160,7 @@ TEST_CASE("device models: viscoelastic springs beside plain water", "[device][mo
 }
 
 TEST_CASE("device models: the continuum surface force on a free drop", "[device][models][surface_tension]") {
-  const sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=8", "sph.surface_tension=csf"});
+  const sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=8", "solver=wcsph", "sph.surface_tension=csf"});
   const auto phases = check_case(scene, {{"continuum surface force", [](sph::SimConstants& c) { c.csf_enabled = 0; }}});
   float kappa = 0.0f;
   for (float k : phases[phase_slot(sph::Phase::Forces)].curvature) kappa = std::max(kappa, k);

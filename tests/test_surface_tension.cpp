@@ -120,7 +120,7 @@ TEST_CASE("cohesion kernel: the calibration's moments and the potential", "[surf
 
 TEST_CASE("surface tension pulls a cube of water into a sphere of its volume at two resolutions", "[surface_tension]") {
   for (int across : {10, 14}) {
-    const DropRun r = run_drop(across, 0.4);
+    const DropRun r = run_drop(across, 0.4, {"solver=wcsph", "sph.surface_tension=cohesion"});
     INFO(across << " across: radius " << r.radius << " m, outermost particle " << r.outermost << " m, volume-equivalent "
                 << r.equivalent << " m; kinetic energy at most " << r.ke_max << " J, surface energy released "
                 << r.released << " J, initially " << r.initial_surface_energy << " J, budget " << r.budget << " J");
@@ -162,14 +162,15 @@ TEST_CASE("a resting drop's inner pressure follows Laplace's law under DFSPH wit
   }
   // The method where it fails: WCSPH's Tait pressure holds the same ball 29% above Laplace's (the pressure
   // gradient at the free surface, docs/results.md).
-  const DropRun w = run_drop(12, 1.0, {"sph.surface_tension=csf"});
+  const DropRun w = run_drop(12, 1.0, {"solver=wcsph", "sph.surface_tension=csf"});
   INFO("WCSPH, 12 across: " << w.inner_pressure << " Pa against " << 2.0 * sigma / w.equivalent << " Pa");
   CHECK(w.inner_pressure > 1.15 * 2.0 * sigma / w.equivalent);
 }
 
 TEST_CASE("the energy budget counts the surface energy of the start", "[surface_tension][energy]") {
   // The excess cohesive energy of a lattice cube scales with its area: 8^3 and 16^3 particles.
-  sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=8"});  // d = 0.0125 m
+  sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=8", "solver=wcsph",
+                                                          "sph.surface_tension=cohesion"});  // d = 0.0125 m
   scene.particles_across = 0;
   scene.spacing = 0.0125;
   const sph::Setup small = sph::create_setup(scene, 1.0);
@@ -195,7 +196,9 @@ TEST_CASE("the energy budget counts the surface energy of the start", "[surface_
 }
 
 TEST_CASE("a fluid too soft for its surface tension is refused with the least speed of sound", "[surface_tension][scene]") {
-  CHECK_THROWS_WITH(sph::create_setup(scene_file("drop_oscillation.json", {"fluids.0.speed_of_sound=5"}), 1.0),
+  CHECK_THROWS_WITH(sph::create_setup(scene_file("drop_oscillation.json", {"fluids.0.speed_of_sound=5", "solver=wcsph",
+                                                                        "sph.surface_tension=cohesion"}),
+                                      1.0),
                     Contains("fluids.0.speed_of_sound") && Contains("at least") && Contains("surface_tension"));
   CHECK_THROWS_WITH(scene_file("drop_oscillation.json", {"fluids.0.surface_tension=-1"}), Contains("fluids.0.surface_tension"));
 }
