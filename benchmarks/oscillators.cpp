@@ -76,7 +76,11 @@ int main(int argc, char** argv) {
   CLI::App app{"sph_oscillators: largest stable stiffness and energy drift of each integrator on the thesis's oscillators"};
   sph::use_error_prefix(app);
   app.add_option("--out,-o", out, "output directory (oscillators.csv, oscillators.md)")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 1;  // --help: 0; every parse error is bad input (CLI11's own codes are 100+)
+  }
 
   struct Row {
     Integrator m;
@@ -90,8 +94,14 @@ int main(int argc, char** argv) {
       {Integrator::ModifiedVelocityVerlet, "(not in the undamped test)", "stable at 15000, unstable at 20000"},
       {Integrator::Leapfrog, "gains energy at 1e4", "unstable at 15000"}};
 
-  std::filesystem::create_directories(out);
+  std::error_code made;
+  std::filesystem::create_directories(out, made);
   std::ofstream csv(out + "/oscillators.csv"), md(out + "/oscillators.md");
+  if (made || !csv || !md) {
+    std::fprintf(stderr, "error: --out %s: cannot write oscillators.csv and oscillators.md there%s%s\n", out.c_str(),
+                 made ? ": " : "", made ? made.message().c_str() : "");
+    return 1;
+  }
   csv << "integrator,k_crit_undamped,omega_dt_crit_undamped,k_crit_damped,omega_dt_crit_damped,energy_drift_k100_300_steps,"
          "energy_max_dev_k100_10000_steps,energy_drift_k100_10000_steps\n";
   md << "| integrator | largest stable K, undamped (omega dt) | thesis, undamped | largest stable K, damped (omega dt) | "

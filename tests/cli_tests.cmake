@@ -534,8 +534,17 @@ sph_cli_test(contact_angle_out_of_range
   --exit 1 --stderr "fluids.1.contact_angle" --stderr "out of range" --stderr "180"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/wetting.json --set fluids.1.contact_angle=0 --out ${SPH_CLI_OUT}/contact_zero)
 sph_cli_test(interface_tension_unknown_fluid
-  --exit 1 --stderr "interface_tension.0.fluids.1" --stderr "no fluid named"
+  --exit 1 --stderr "interface_tension.0.fluids.1" --stderr "no fluid named" --stderr "the fluids: \"outer\", \"inner\""
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/interface_drop.json --set interface_tension.0.fluids.1=oil --out ${SPH_CLI_OUT}/interface_oil)
 sph_cli_test(viscoelastic_short_run
   --exit 0 --stdout "up to 26 per particle" --file ${SPH_CLI_OUT}/viscoelastic_run/metrics.csv
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --time 0.02 --quiet --out ${SPH_CLI_OUT}/viscoelastic_run)
+
+# --- sph_oscillators: bad options and an output it cannot write, exit 1 with the option named --------------
+set(SPH_OSCILLATORS $<TARGET_FILE:sph_oscillators>)
+sph_cli_test(oscillators_unknown_option
+  --exit 1 --stderr "error:" --stderr "--bogus"
+  -- ${SPH_OSCILLATORS} --bogus)
+sph_cli_test(oscillators_unwritable_out
+  --exit 1 --stderr "--out" --stderr "/dev/null/x" --stderr "cannot write"
+  -- ${SPH_OSCILLATORS} --out /dev/null/x)

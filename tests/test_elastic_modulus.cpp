@@ -35,8 +35,8 @@ struct Torsion {
 };
 
 // A jelly ball (radius 0.04 m, shear modulus G = 5 kPa, no gravity, almost no viscosity) started in the 0T2
-// mode about the axis e (peak speed 2 cm/s), run for `seconds` on cpu; the angular momentum about e of the
-// half x.e > 0 changes sign every half period.
+// mode about the axis e (at most 0.01 R per second, 0.4 mm/s: linear), run for `seconds` on cpu; the angular
+// momentum about e of the half x.e > 0 changes sign every half period. R: the ball of the particles' volume.
 Torsion torsion_period(sph::Vec3 e, double spacing, double seconds) {
   const double modulus = 5000.0, rho0 = 1000.0;
   const std::string json = R"({

@@ -76,7 +76,7 @@ TEST_CASE("a jelly cube rebounds from the floor where a water cube of the same v
   INFO("jelly: centre " << r.start[0] << " -> " << r.lowest[0] << " m, rebound " << r.rebound[0] << " m, width at the end "
                         << r.width_end[0] << " m; water: centre " << r.start[1] << " -> " << r.lowest[1] << " m, rebound "
                         << r.rebound[1] << " m, width " << r.width_end[1] << " m");
-  CHECK(r.rebound[0] > 0.25 * fall_jelly);  // measured 0.5: it bounces
+  CHECK(r.rebound[0] > 0.25 * fall_jelly);  // measured 0.62: it bounces
   CHECK(r.rebound[1] < 0.15 * fall_water);  // splashing up the walls lifts the water's centre a little
   CHECK(r.width_end[0] < 1.25 * 0.054);     // the jelly keeps its shape (a 0.054 m lattice cube)
   CHECK(r.width_end[1] > 3.0 * 0.054);      // the water spreads across the tank
@@ -125,7 +125,7 @@ TEST_CASE("spring forces conserve momentum", "[viscoelastic][conservation]") {
   const std::vector<double> p0 = momentum(scale0);
   for (int step = 0; step < 300; ++step) cpu.step(2e-4f);
   const std::vector<double> p1 = momentum(scale1);
-  // The springs did work: some broke or stretched (the jelly's rest lengths are compared after the run).
+  // With plasticity 0 no rest length may change, however the springs are strained (compared after the run).
   const sph::SpringNetwork after = cpu.download_springs();
   double stretched = 0.0;
   for (std::size_t k = 0; k < after.rest.size(); ++k)

@@ -501,7 +501,10 @@ int main(int argc, char** argv) {
       const Recording recording = load_recording(o.replay);
       return run(o, &recording);
     }
-    (void)load_scene(o.scene, o.sets);  // bad scene or back end: a clear message before any window opens
+    // A bad scene or back end: a clear message before any window opens, the set-up's checks included (a
+    // setting the solver cannot hold, a resolution beyond the particle budget).
+    const Scene scene = load_scene(o.scene, o.sets);
+    (void)create_setup(scene, scene.run_time);
     (void)backend_factory(o.backend);
     return run(o, nullptr);
   } catch (const std::exception& e) {

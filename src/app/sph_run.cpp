@@ -171,8 +171,11 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << "solver: " << solver_name(scene.solver)
             << (scene.solver == Solver::Wcsph ? std::string(", integrator: ") + integrator_name(scene.integrator) : std::string());
   if (scene.solver == Solver::Dfsph) std::cout << ", chebyshev: " << scene.dfsph.chebyshev;
-  std::cout << (st.constants.csf_enabled ? ", surface tension: csf"
-                                         : (st.constants.surface_tension_enabled ? ", surface tension: cohesion" : ""));
+  if (scene.solver == Solver::Pbf && (st.constants.csf_enabled || st.constants.surface_tension_enabled))
+    std::cout << ", surface tension: none (pbf ignores it)";
+  else
+    std::cout << (st.constants.csf_enabled ? ", surface tension: csf"
+                                           : (st.constants.surface_tension_enabled ? ", surface tension: cohesion" : ""));
   if (!scene.interface_tensions.empty())
     std::cout << ", interface tension: " << scene.interface_tensions.size()
               << (scene.interface_tensions.size() == 1 ? " pair" : " pairs");

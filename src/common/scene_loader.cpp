@@ -53,7 +53,9 @@ int fluid_index(const json& v, const std::vector<FluidSpec>& fluids, const std::
   if (v.is_string()) {
     for (std::size_t i = 0; i < fluids.size(); ++i)
       if (fluids[i].name == v.get<std::string>()) return int(i);
-    fail(source, key, "no fluid named \"" + v.get<std::string>() + "\"");
+    std::string names;
+    for (const FluidSpec& f : fluids) names += (names.empty() ? "\"" : ", \"") + f.name + "\"";
+    fail(source, key, "no fluid named \"" + v.get<std::string>() + "\"; the fluids: " + names);
   }
   fail(source, key, "expected a fluid name or an integer index");
 }
