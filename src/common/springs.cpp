@@ -13,19 +13,16 @@ namespace sph {
 SpringLaw spring_law(double modulus, double spacing, double h) {
   if (!(modulus > 0.0)) return SpringLaw{0.0, 0.0};
   const double d = spacing;
-  // sum_b (d / r)^p (x^4 - 3 x^2 y^2) / r^2: the cubic anisotropy C11 - C12 - 2 C44 (times 2 d^3 / k).
-  const auto anisotropy = [&](double p) {
+  // sum over the bonds b of (d / r_b)^p f(x_b, y_b) / r_b^2
+  const auto bond_sum = [&](double p, auto&& f) {
     return lattice_sum_xyz(d, h, [&](double x, double y, double z) {
       const double r2 = x * x + y * y + z * z;
-      return r2 > 0.0 ? std::pow(d * d / r2, 0.5 * p) * (x * x * x * x - 3.0 * x * x * y * y) / r2 : 0.0;
+      return r2 > 0.0 ? std::pow(d * d / r2, 0.5 * p) * f(x, y) / r2 : 0.0;
     });
   };
-  const auto shear = [&](double p) {  // C44 = shear(p) k / (2 d^3)
-    return lattice_sum_xyz(d, h, [&](double x, double y, double z) {
-      const double r2 = x * x + y * y + z * z;
-      return r2 > 0.0 ? std::pow(d * d / r2, 0.5 * p) * x * x * y * y / r2 : 0.0;
-    });
-  };
+  // The cubic anisotropy C11 - C12 - 2 C44 and the shear modulus C44, times 2 d^3 / k.
+  const auto anisotropy = [&](double p) { return bond_sum(p, [](double x, double y) { return x * x * (x * x - 3.0 * y * y); }); };
+  const auto shear = [&](double p) { return bond_sum(p, [](double x, double y) { return x * x * y * y; }); };
   if (!(shear(0.0) > 0.0))
     throw std::invalid_argument("springs need bonds off the lattice's axes to carry shear: h must exceed sqrt(2) "
                                 "times the spacing (raise resolution.neighbours)");
