@@ -5,10 +5,10 @@
 
 namespace sph {
 
-// sum of f(r^2) over the lattice offsets (i, j, k) d with r^2 = (i^2 + j^2 + k^2) d^2 < h^2, the point itself
-// (r^2 = 0) included, in a fixed order.
-template <class F>
-double lattice_sum(double d, double h, F f) {
+// Calls g(i, j, k, r^2) for the lattice offsets (i, j, k) d with r^2 = (i^2 + j^2 + k^2) d^2 < h^2, the point
+// itself (r^2 = 0) included, in a fixed order; returns the sum of what g returns.
+template <class G>
+double sum_over_lattice(double d, double h, G g) {
   long n = 0;
   while (double(n) * d < h) ++n;
   double sum = 0.0;
@@ -16,24 +16,21 @@ double lattice_sum(double d, double h, F f) {
     for (long j = -n; j <= n; ++j)
       for (long i = -n; i <= n; ++i) {
         const double r2 = double(i * i + j * j + k * k) * d * d;
-        if (r2 < h * h) sum += f(r2);
+        if (r2 < h * h) sum += g(i, j, k, r2);
       }
   return sum;
 }
 
-// sum of f(x, y, z) over the same offsets (x, y, z) = (i, j, k) d, in the same order as lattice_sum.
+// sum of f(r^2) over those offsets.
+template <class F>
+double lattice_sum(double d, double h, F f) {
+  return sum_over_lattice(d, h, [&](long, long, long, double r2) { return f(r2); });
+}
+
+// sum of f(x, y, z) over the same offsets (x, y, z) = (i, j, k) d, in the same order.
 template <class F>
 double lattice_sum_xyz(double d, double h, F f) {
-  long n = 0;
-  while (double(n) * d < h) ++n;
-  double sum = 0.0;
-  for (long k = -n; k <= n; ++k)
-    for (long j = -n; j <= n; ++j)
-      for (long i = -n; i <= n; ++i) {
-        const double r2 = double(i * i + j * j + k * k) * d * d;
-        if (r2 < h * h) sum += f(double(i) * d, double(j) * d, double(k) * d);
-      }
-  return sum;
+  return sum_over_lattice(d, h, [&](long i, long j, long k, double) { return f(double(i) * d, double(j) * d, double(k) * d); });
 }
 
 // The binding of two half-lattices: the sum of f(r^2) over the pairs (a, b) with a in one column of the upper
