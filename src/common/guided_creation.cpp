@@ -366,6 +366,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.spring_plasticity = float(f.spring_plasticity);
     if (f.near_stiffness > 0.0) c.near_enabled = 1;
     fc.csf_sigma = float(f.surface_tension / csf_band_integral(s.spacing, s.h, s.lattice_density));
+    fc.particle_side = float(std::cbrt(double(fc.mass) / f.rest_density));
     const bool csf = scene.surface_tension_model == SurfaceTensionModel::Csf;
     if (f.surface_tension > 0.0) (csf ? c.csf_enabled : c.surface_tension_enabled) = 1;
     if (f.xsph > 0.0) c.xsph_enabled = 1;

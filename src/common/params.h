@@ -106,6 +106,9 @@ struct FluidConstants {
   float near_stiffness;    // k_near [m^2/s^2], P_near = k_near rho_near (thesis 3.1); 0 disables
   float cohesion;          // 8 sigma / (pi rho0^2 h^5 J4) [m/(kg s^2)], cohesion from sigma (guided_creation.h); 0 disables
   float csf_sigma;         // sigma / chi [N/m] of the continuum surface force (surface_tension_csf.h)
+  // cbrt(m / rho0) [m], a particle's side, which the continuum surface force's curvature offset reads
+  // (surface_tension_csf.h); computed on the host, since cbrtf differs in its last bit between glibc and CUDA
+  float particle_side;
   float adhesion;          // k_a [m/(kg s^2)], adhesion to boundary particles from the contact angle (cohesion_energy.h); 0: none
   float xsph;              // XSPH epsilon; 0 disables
   float lifetime;          // particles older than this are recycled [s]; 0 = never

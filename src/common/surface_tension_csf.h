@@ -94,7 +94,7 @@ SPH_HD inline float csf_curvature(const SimConstants& c, const GridView& grid, c
   float kappa = -2.0f * divergence / norm;
   const float most = kCsfMaxCurvature / k.h;
   kappa = kappa > most ? most : (kappa < -most ? -most : kappa);
-  return csf_surface_curvature(kappa, cbrtf(p.pos_mass[i].w / c.fluids[fluid].rest_density));
+  return csf_surface_curvature(kappa, c.fluids[fluid].particle_side);
 }
 
 SPH_HD inline Vec3 csf_acceleration(const SimConstants& c, const ParticleView& p, int32_t i) {
