@@ -10,8 +10,9 @@
 //
 // Storage is by particle id, so that the grid's reorder never moves it: each id has `capacity` slots of
 // (partner id, rest length, stiffness), both ends of a spring holding it with the same rest length (their
-// updates are the same arithmetic on the same |x_ab|, so they stay equal) and the same stiffness. index_of_id maps an id to the particle's
-// place in the current order; the solver rebuilds it after each grid build (index_particle).
+// updates are the same arithmetic on the same |x_ab|, so they stay equal) and the same stiffness.
+// index_of_id maps an id to the particle's place in the current order; the solver rebuilds it after each
+// grid build (index_particle).
 #pragma once
 
 #include <cstdint>
@@ -43,7 +44,7 @@ struct SpringNetwork {
   bool empty() const { return capacity == 0; }
   std::size_t bytes() const { return partner.size() * 12 + index_of_id.size() * 4; }
   SpringView view() {
-    return SpringView{capacity,    int32_t(index_of_id.size()), partner.data(), rest.data(), stiffness.data(),
+    return SpringView{capacity, int32_t(index_of_id.size()), partner.data(), rest.data(), stiffness.data(),
                       index_of_id.data()};
   }
 };
