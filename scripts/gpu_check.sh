@@ -239,11 +239,11 @@ run() {
          --workload walls_mirror --workload walls_particles --out "$WORK/bench"
     cp "$WORK/bench/bench.csv" "$RES/" 2>/dev/null
     step "interop probe: cuda writes GL buffers (EGL)" 90 interop_probe
-    # Last: nvcc's default fused multiply-adds against the 1e-5 tolerances (issue 11, item 2: may fail).
-    step "device tests, cuda, default build (1e-5)" 150 env SPH_DEVICE_BACKEND=cuda "$BUNDLE/bin/default/sph_device_tests"
+    # Last: nvcc's default fused multiply-adds against the rounding tolerance (tests/device_compare.h).
+    step "device tests, cuda, default build (rounding reach)" 150 env SPH_DEVICE_BACKEND=cuda "$BUNDLE/bin/default/sph_device_tests"
   else
     local s
-    for s in "device tests, cuda, bitwise (--fmad=false)" "device tests, cuda, default build (1e-5)" \
+    for s in "device tests, cuda, bitwise (--fmad=false)" "device tests, cuda, default build (rounding reach)" \
              "frames host = cuda (13 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
              "interop probe: cuda writes GL buffers (EGL)"; do
       skip "$s" "no GPU"
