@@ -1,6 +1,7 @@
 // Helpers shared by the physics tests: running a scene on the serial reference and measuring it.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -60,6 +61,14 @@ inline double mean_body_height(sph::Simulation& sim, double from, double until, 
     }
   }
   return samples > 0 ? sum / samples : 0.0;
+}
+
+// The contact angle [degrees] of a spherical cap on a wall with the given volume [m^3] and height [m]: with R
+// the sphere's radius, V = pi H^2 (3 R - H) / 3 and cos(theta) = 1 - H / R.
+inline double spherical_cap_angle(double volume, double height) {
+  const double pi = 3.14159265358979323846;
+  const double radius = (3.0 * volume / (pi * height * height) + height) / 3.0;
+  return std::acos(std::max(-1.0, std::min(1.0, 1.0 - height / radius))) * 180.0 / pi;
 }
 
 }  // namespace sph_test

@@ -167,6 +167,17 @@ TEST_CASE("device models: the continuum surface force on a free drop", "[device]
   CHECK(kappa > 0.0f);
 }
 
+TEST_CASE("device models: contact angles under the continuum surface force (DFSPH)", "[device][models][surface_tension]") {
+  // Issue 15: the images sheared along the walls (surface_tension_csf.h), a colour pass of their own.
+  const sph::Scene scene = scene_file("contact_angle.json", {"resolution.particles_across=5"});
+  check_case(scene,
+             {{"contact angle", [](sph::SimConstants& c) {
+                 c.csf_contact_enabled = 0;
+                 for (auto& f : c.fluids) f.csf_contact = 0;
+               }}},
+             100);
+}
+
 TEST_CASE("device models: interface tension between two fluids", "[device][models][interface]") {
   // Issue 15: the cohesion between two fluids (forces.h, interface_cohesion), a loop of its own.
   const sph::Scene scene = scene_file("interface_drop.json", {"resolution.spacing=0.01"});

@@ -349,7 +349,12 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.artificial_alpha = float(f.artificial_viscosity);
     fc.near_stiffness = float(f.near_stiffness);
     fc.cohesion = float(cohesion_from_surface_tension(f.surface_tension, f.rest_density, s.h));
-    fc.adhesion = f.contact_angle > 0.0 ? float(adhesion_constant(fc.cohesion, f.contact_angle, s.spacing, s.h)) : 0.0f;
+    const bool csf = scene.surface_tension_model == SurfaceTensionModel::Csf;
+    const bool contact = f.contact_angle > 0.0;
+    fc.adhesion = contact && !csf ? float(adhesion_constant(fc.cohesion, f.contact_angle, s.spacing, s.h)) : 0.0f;
+    fc.csf_contact = contact && csf ? 1 : 0;
+    fc.csf_contact_cot = contact ? float(1.0 / std::tan(f.contact_angle * kPiDouble / 180.0)) : 0.0f;
+    if (fc.csf_contact) c.csf_contact_enabled = 1;
     if (fc.adhesion > 0.0f) c.adhesion_enabled = 1;
     fc.xsph = float(f.xsph);
     fc.lifetime = 0.0f;
@@ -367,7 +372,6 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     if (f.near_stiffness > 0.0) c.near_enabled = 1;
     fc.csf_sigma = float(f.surface_tension / csf_band_integral(s.spacing, s.h, s.lattice_density));
     fc.particle_side = float(std::cbrt(double(fc.mass) / f.rest_density));
-    const bool csf = scene.surface_tension_model == SurfaceTensionModel::Csf;
     if (f.surface_tension > 0.0) (csf ? c.csf_enabled : c.surface_tension_enabled) = 1;
     if (f.xsph > 0.0) c.xsph_enabled = 1;
     if (f.artificial_viscosity > 0.0) c.artificial_enabled = 1;

@@ -110,6 +110,10 @@ struct FluidConstants {
   // (surface_tension_csf.h); computed on the host, since cbrtf differs in its last bit between glibc and CUDA
   float particle_side;
   float adhesion;          // k_a [m/(kg s^2)], adhesion to boundary particles from the contact angle (cohesion_energy.h); 0: none
+  // The contact angle theta under the continuum surface force (surface_tension_csf.h): csf_contact 1 where
+  // the fluid has one, and cot theta, the shear of its images along the walls.
+  int32_t csf_contact;
+  float csf_contact_cot;
   float xsph;              // XSPH epsilon; 0 disables
   float lifetime;          // particles older than this are recycled [s]; 0 = never
   // Viscoelastic springs (springs.h, Clavet et al. 2005, thesis eq. 2.26); spring_stiffness 0: none.
@@ -181,6 +185,7 @@ struct SimConstants {
   int32_t near_enabled;             // any fluid with near_stiffness > 0
   int32_t surface_tension_enabled;  // any fluid with surface_tension > 0 under the cohesion model
   int32_t adhesion_enabled;         // any fluid with an adhesion to boundary particles (contact_angle)
+  int32_t csf_contact_enabled;      // any fluid with a contact angle under the continuum surface force
   int32_t interface_cohesion_enabled;  // any cross_cohesion != 0 (an interface tension between two fluids)
   int32_t csf_enabled;              // any fluid with surface_tension > 0 under the continuum surface force
   int32_t xsph_enabled;             // any fluid with xsph > 0

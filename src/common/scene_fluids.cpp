@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "guided_creation.h"
+#include "surface_tension_csf.h"
 
 namespace sph {
 
@@ -104,9 +105,27 @@ void check_contact_angle(const Scene& scene) {
     if (!(f.surface_tension > 0.0))
       throw SceneError(key + ": the adhesion is calibrated from the fluid's surface tension; give " + fluid_key(i) +
                        ".surface_tension > 0 [N/m] or remove contact_angle");
-    if (scene.surface_tension_model != SurfaceTensionModel::Cohesion)
-      throw SceneError(key + ": needs sph.surface_tension = \"cohesion\"; the continuum surface force (\"csf\") has no "
-                             "wall term for the adhesion to balance (the fluid would climb every wall)");
+    if (scene.surface_tension_model == SurfaceTensionModel::Csf) {
+      // The continuum surface force sets the angle at the walls mirror_walls.h finds (surface_tension_csf.h).
+      bool wall = false;
+      for (const BoundarySpec& b : scene.boundaries) {
+        const Shape& s = b.shape;
+        wall = wall || (s.type == ShapeType::Box && s.keep_inside) || (s.type == ShapeType::Plane && !s.absorb) ||
+               (s.type == ShapeType::Sphere && s.keep_inside);
+      }
+      if (!wall)
+        throw SceneError(key + ": the continuum surface force sets the angle at walls (box or sphere containers, "
+                               "planes that do not absorb), and this scene has none");
+      if (f.contact_angle < kCsfContactAngleMin || f.contact_angle > kCsfContactAngleMax) {
+        std::ostringstream os;
+        os << key << " = " << f.contact_angle << ": under the continuum surface force the contact angle must lie in ["
+           << kCsfContactAngleMin << ", " << kCsfContactAngleMax << "] degrees (below, the spreading film sheds "
+           << "particles; above, a drop released as a cube leaves the wall and no angle was measured: docs/results.md, \"Contact angle\"); sph.surface_tension = "
+           << "\"cohesion\" takes any angle in (0, 180]";
+        throw SceneError(os.str());
+      }
+      continue;
+    }
     if (!scene.boundary_particles && scene.bodies.empty())
       throw SceneError(key + ": the adhesion acts between the fluid and boundary particles; set sph.walls = "
                              "\"particles\" (or add bodies)");

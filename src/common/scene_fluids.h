@@ -33,10 +33,11 @@ void check_surface_tension(const Scene& scene, double h);
 // speed's time step also resolves the springs. SceneError naming the key otherwise.
 void check_springs(const Scene& scene);
 
-// A contact angle (Akinci's adhesion, cohesion_energy.h) only where its calibration holds: a fluid with
-// surface_tension > 0 under the cohesion model (the continuum surface force has no wall term, and with the
-// adhesion alone water climbed every wall of its tank: docs/results.md), a solver with surface tension (not
-// PBF), and walls of boundary particles or rigid bodies for it to act on. SceneError naming the key otherwise.
+// A contact angle only where it holds: a fluid with surface_tension > 0 and a solver with surface tension (not
+// PBF); under the cohesion model (Akinci's adhesion, cohesion_energy.h) walls of boundary particles or rigid
+// bodies for it to act on; under the continuum surface force (its wall condition, surface_tension_csf.h) a
+// wall it can act at and an angle in [kCsfContactAngleMin, kCsfContactAngleMax], the range it was measured to
+// hold. SceneError naming the key otherwise.
 void check_contact_angle(const Scene& scene);
 
 // An interface tension (scene key interface_tension) only under the cohesion model and a solver with surface

@@ -23,10 +23,26 @@
 //   would be chi sigma kappa, not sigma kappa.
 // Not a pair force: the total momentum is conserved only as far as sum_i V_i kappa_i n_i vanishes (to the
 // discretisation's error on a closed surface).
+//
+// Walls under a contact angle theta (fluids.N.contact_angle): the surface must meet a wall at theta [BKZ92,
+// "wall adhesion"]. Here the fluid is continued through the walls within h (mirror_walls.h: faces of box
+// containers, planes and sphere containers, whatever sph.walls is; obstacles and bodies have none) by images
+// that continue a surface meeting the wall at theta straight through it, and the colour gradient and the
+// curvature read those images as neighbours. A surface meeting the wall at another angle then shows a kink
+// at the wall, read as curvature, whose force moves the contact line towards theta; a wetted wall is no
+// surface (a particle resting on the floor has |n| ~ 0 as in the bulk). The image of x, at height y =
+// n.x - offset above a wall of normal n (into the fluid), is x - 2 y n + 2 y cot(theta) t, t the unit vector
+// along the wall away from the fluid (from the particle's normal): the reflection sheared along t, which
+// maps the half-space behind a plane meeting the wall at theta onto its own continuation (at 90 degrees the
+// plain mirror image). Normals map by the transpose of that map: u -> u - 2 (u.n) n + 2 cot(theta) (u.t) n.
+// Where two or three walls are within h (an edge, a corner) the images are the plain mirror images (90
+// degrees), and where a particle's normal lies within kCsfContactTangentFloor of the wall's normal (a
+// surface along the wall, no contact line) there is no shear.
 #pragma once
 
 #include "grid.h"
 #include "kernels.h"
+#include "mirror_walls.h"
 #include "params.h"
 #include "particle_view.h"
 
@@ -59,7 +75,58 @@ SPH_HD inline float csf_surface_curvature(float kappa_p, float spacing) {
   return kappa_p / (1.0f + 0.25f * bounded * spacing);
 }
 
-SPH_HD inline Vec3 csf_normal(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
+// The contact angles the wall condition is measured to hold, in degrees (docs/results.md, "Contact angle"):
+// below 60 the spreading film sheds a third of a drop at 45, above 120 a drop released as a cube leaves the
+// floor (at 135 and 150). Others are refused at set-up (scene_fluids.cpp).
+constexpr double kCsfContactAngleMin = 60.0;
+constexpr double kCsfContactAngleMax = 120.0;
+
+// Below this part along the wall of a particle's unit normal (the sine of its angle to the wall's normal: 6
+// degrees) its surface runs along the wall, with no contact line: no shear (above).
+constexpr float kCsfContactTangentFloor = 0.1f;
+
+// The one wall within h of a particle, for its images (above): on = 0 where there is none or more than one.
+struct CsfWallFrame {
+  int32_t on;
+  Vec3 normal;   // n, unit, into the fluid
+  float offset;  // the wall is n.x = offset
+  Vec3 shear;    // 2 cot(theta) t [-], 0 without a contact line
+};
+
+// The frame of a particle with inward unit normal u (or 0 without a normal) among `walls`.
+SPH_HD inline CsfWallFrame csf_wall_frame(const FluidConstants& f, const NearWalls& walls, Vec3 u) {
+  CsfWallFrame w{0, Vec3{0.0f, 0.0f, 0.0f}, 0.0f, Vec3{0.0f, 0.0f, 0.0f}};
+  if (walls.count != 1) return w;
+  w.on = 1;
+  w.normal = walls.normal[0];
+  w.offset = walls.offset[0];
+  const Vec3 along = dot(u, w.normal) * w.normal - u;  // the outward normal's part along the wall
+  const float length_along = sqrtf(dot(along, along));
+  if (length_along > kCsfContactTangentFloor) w.shear = (2.0f * f.csf_contact_cot / length_along) * along;
+  return w;
+}
+
+SPH_HD inline Vec3 csf_image_position(const CsfWallFrame& w, Vec3 x) {
+  const float y = dot(x, w.normal) - w.offset;
+  return x - (2.0f * y) * w.normal + y * w.shear;
+}
+
+// The image of a normal (any length), by the transpose of the map of positions.
+SPH_HD inline Vec3 csf_image_normal(const CsfWallFrame& w, Vec3 u) {
+  return u + (dot(u, w.shear) - 2.0f * dot(u, w.normal)) * w.normal;
+}
+
+// A normal mirrored across the walls of mirror image `image` (mirror_walls.h).
+SPH_HD inline Vec3 csf_mirror_normal(const NearWalls& w, int32_t image, Vec3 u) {
+  for (int32_t k = 0; k < kMaxMirrorWalls; ++k) {
+    if (k >= w.count || !(image & (1 << k))) continue;
+    u -= (2.0f * dot(u, w.normal[k])) * w.normal[k];
+  }
+  return u;
+}
+
+// The colour gradient from the particle's neighbours of its own fluid, without images.
+SPH_HD inline Vec3 csf_fluid_normal(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const uint8_t fluid = p.fluid[i];
   Vec3 n{0.0f, 0.0f, 0.0f};
@@ -71,6 +138,46 @@ SPH_HD inline Vec3 csf_normal(const SimConstants& c, const GridView& grid, const
   return n;
 }
 
+// The colour gradient n: from the neighbours of the particle's own fluid, and under a contact angle also
+// from their plain mirror images across the walls within h (the first of two passes: the second,
+// csf_contact_normal, shears the images along the direction this one gives).
+SPH_HD inline Vec3 csf_normal(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
+  Vec3 n = csf_fluid_normal(c, grid, p, i);
+  const uint8_t fluid = p.fluid[i];
+  if (!c.fluids[fluid].csf_contact) return n;
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  const float rho0 = c.fluids[fluid].rest_density;
+  for_each_ghost(c, grid, p, near_walls(c, xi), i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+    if (p.fluid[j] != fluid || r2 <= 0.0f) return;
+    n += (p.pos_mass[j].w / rho0 * poly6_grad_fac(c.kernel, r2)) * (xi - xg);
+  });
+  return n;
+}
+
+// The second pass under a contact angle, for a particle with a normal at one wall: the colour gradient with
+// the images sheared along the wall (above), the direction t from the first pass's normal. Elsewhere the
+// first pass's n.
+SPH_HD inline Vec3 csf_contact_normal(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
+  const KernelCoeffs& k = c.kernel;
+  const Vec3 first = p.surface_normal[i];
+  const uint8_t fluid = p.fluid[i];
+  const FluidConstants& f = c.fluids[fluid];
+  const float len = sqrtf(dot(first, first));
+  if (!f.csf_contact || !(len * k.h > kCsfNormalFloor)) return first;
+  const Vec3 xi = xyz(p.pos_mass[i]);
+  const CsfWallFrame w = csf_wall_frame(f, near_walls(c, xi), (1.0f / len) * first);
+  if (!w.on) return first;
+  Vec3 n = csf_fluid_normal(c, grid, p, i);
+  for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3, float) {
+    if (p.fluid[j] != fluid) return;
+    const Vec3 xij = xi - csf_image_position(w, xyz(p.pos_mass[j]));
+    const float r2 = dot(xij, xij);
+    if (!(r2 < k.h2) || r2 <= 0.0f) return;
+    n += (p.pos_mass[j].w / f.rest_density * poly6_grad_fac(k, r2)) * xij;
+  });
+  return n;
+}
+
 SPH_HD inline float csf_curvature(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const Vec3 ni = p.surface_normal[i];
@@ -78,23 +185,45 @@ SPH_HD inline float csf_curvature(const SimConstants& c, const GridView& grid, c
   if (!(len_i * k.h > kCsfNormalFloor)) return 0.0f;
   const Vec3 ui = (1.0f / len_i) * ni;
   const uint8_t fluid = p.fluid[i];
+  const FluidConstants& f = c.fluids[fluid];
   float divergence = 0.0f, norm = 0.0f;
   int32_t count = 0;
-  for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
-    if (p.fluid[j] != fluid || r2 <= 0.0f) return;
-    const Vec3 nj = p.surface_normal[j];
+  // V_j (u_j - u_i) . grad W_ij and V_j x_ji . grad W_ij of one neighbour (or image) at x_ij with normal n_j.
+  auto add = [&](Vec3 nj, Vec3 xij, float r2, float volume) {
     const float len_j = sqrtf(dot(nj, nj));
     if (!(len_j * k.h > kCsfNormalFloor)) return;
     ++count;
-    const float w = (p.pos_mass[j].w / c.fluids[fluid].rest_density) * poly6_grad_fac(k, r2);  // V_j grad W_ij / x_ij
-    divergence += w * dot((1.0f / len_j) * nj - ui, xij);  // V_j (u_j - u_i) . grad W_ij
-    norm -= w * r2;                                          // V_j x_ji . grad W_ij
+    const float w = volume * poly6_grad_fac(k, r2);  // V_j grad W_ij / x_ij
+    divergence += w * dot((1.0f / len_j) * nj - ui, xij);
+    norm -= w * r2;
+  };
+  for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
+    if (p.fluid[j] != fluid || r2 <= 0.0f) return;
+    add(p.surface_normal[j], xij, r2, p.pos_mass[j].w / f.rest_density);
   });
+  if (f.csf_contact) {  // the images across the walls (above)
+    const Vec3 xi = xyz(p.pos_mass[i]);
+    const NearWalls walls = near_walls(c, xi);
+    const CsfWallFrame w = csf_wall_frame(f, walls, ui);
+    if (w.on) {  // one wall: sheared images
+      for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3, float) {
+        if (p.fluid[j] != fluid) return;
+        const Vec3 xij = xi - csf_image_position(w, xyz(p.pos_mass[j]));
+        const float r2 = dot(xij, xij);
+        if (r2 < k.h2 && r2 > 0.0f) add(csf_image_normal(w, p.surface_normal[j]), xij, r2, p.pos_mass[j].w / f.rest_density);
+      });
+    } else {  // an edge or a corner: mirror images
+      for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t image, Vec3 xg, float r2) {
+        if (p.fluid[j] != fluid || r2 <= 0.0f) return;
+        add(csf_mirror_normal(walls, image, p.surface_normal[j]), xi - xg, r2, p.pos_mass[j].w / f.rest_density);
+      });
+    }
+  }
   if (count < kCsfMinNeighbours || !(norm > 0.0f)) return 0.0f;
   float kappa = -2.0f * divergence / norm;
   const float most = kCsfMaxCurvature / k.h;
   kappa = kappa > most ? most : (kappa < -most ? -most : kappa);
-  return csf_surface_curvature(kappa, c.fluids[fluid].particle_side);
+  return csf_surface_curvature(kappa, f.particle_side);
 }
 
 SPH_HD inline Vec3 csf_acceleration(const SimConstants& c, const ParticleView& p, int32_t i) {
