@@ -180,6 +180,7 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
     std::cout << ", interface tension: " << scene.interface_tensions.size()
               << (scene.interface_tensions.size() == 1 ? " pair" : " pairs");
   if (st.constants.adhesion_enabled) std::cout << ", adhesion to walls (contact_angle)";
+  if (st.constants.csf_contact_enabled) std::cout << ", contact angles at walls (contact_angle)";
   std::cout << ", speed bound: " << sim.speed_bound()
             << " m/s, energy budget: " << sim.energy_budget() << " J\n"
             << (sim.relaxation().ran ? sim.relaxation().summary() + "\n" : std::string())

@@ -21,18 +21,13 @@ struct CsfNormalFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { p.surface_normal[i] = csf_normal(*c, g, p, i); }
 };
 
-// The second pass of the colour gradient under a contact angle (into delta_pos, scratch here), then back.
+// The second pass of the colour gradient under a contact angle, in place (it reads no neighbour's normal).
 template <class C>
 struct CsfContactNormalFn {
   C c;
   GridView g;
   ParticleView p;
-  SPH_KERNEL_FN void operator()(int32_t i) const { p.delta_pos[i] = csf_contact_normal(*c, g, p, i); }
-};
-
-struct CsfTakeContactNormalFn {
-  ParticleView p;
-  SPH_KERNEL_FN void operator()(int32_t i) const { p.surface_normal[i] = p.delta_pos[i]; }
+  SPH_KERNEL_FN void operator()(int32_t i) const { p.surface_normal[i] = csf_contact_normal(*c, g, p, i); }
 };
 
 template <class C>
@@ -76,10 +71,7 @@ void continuum_surface_force(Exec& x) {
   if (!x.host_constants().csf_enabled) return;
   using C = typename Exec::Constants;
   x.for_each(CsfNormalFn<C>{x.constants(), x.grid(), x.particles()});
-  if (x.host_constants().csf_contact_enabled) {
-    x.for_each(CsfContactNormalFn<C>{x.constants(), x.grid(), x.particles()});
-    x.for_each(CsfTakeContactNormalFn{x.particles()});
-  }
+  if (x.host_constants().csf_contact_enabled) x.for_each(CsfContactNormalFn<C>{x.constants(), x.grid(), x.particles()});
   x.for_each(CsfCurvatureFn<C>{x.constants(), x.grid(), x.particles()});
   x.for_each(CsfForceFn<C>{x.constants(), x.particles()});
 }
