@@ -99,6 +99,16 @@ SPH_HD inline Vec3 mirror_velocity(const NearWalls& w, int32_t image, Vec3 v) {
   return v;
 }
 
+// A direction (a surface normal) as its mirror image number `image`: its part along each wall's normal
+// reversed, its tangential part kept (mirror_velocity on free-slip walls).
+SPH_HD inline Vec3 mirror_direction(const NearWalls& w, int32_t image, Vec3 u) {
+  for (int32_t i = 0; i < kMaxMirrorWalls; ++i) {
+    if (i >= w.count || !(image & (1 << i))) continue;
+    u -= (2.0f * dot(u, w.normal[i])) * w.normal[i];
+  }
+  return u;
+}
+
 // Calls f(b, image, x_ghost, r2) for every ghost within h of particle a (at xa): each neighbour b's
 // images 1.. across `walls`, r2 = |xa - x_ghost|^2 < h^2; the ghost's velocity is
 // mirror_velocity(walls, image, v_b). Only neighbours within h can have one.

@@ -129,15 +129,6 @@ SPH_HD inline Vec3 csf_image_normal(const CsfWallFrame& w, Vec3 u) {
   return u + (dot(u, w.shear) - 2.0f * dot(u, w.normal)) * w.normal;
 }
 
-// A normal mirrored across the walls of mirror image `image` (mirror_walls.h).
-SPH_HD inline Vec3 csf_mirror_normal(const NearWalls& w, int32_t image, Vec3 u) {
-  for (int32_t k = 0; k < kMaxMirrorWalls; ++k) {
-    if (k >= w.count || !(image & (1 << k))) continue;
-    u -= (2.0f * dot(u, w.normal[k])) * w.normal[k];
-  }
-  return u;
-}
-
 // The colour gradient from the particle's neighbours of its own fluid, without images.
 SPH_HD inline Vec3 csf_fluid_normal(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
   const KernelCoeffs& k = c.kernel;
@@ -233,7 +224,7 @@ SPH_HD inline float csf_curvature(const SimConstants& c, const GridView& grid, c
     } else {  // an edge or a corner: mirror images
       for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t image, Vec3 xg, float r2) {
         if (p.fluid[j] != fluid || r2 <= 0.0f) return;
-        add(csf_mirror_normal(walls, image, p.surface_normal[j]), xi - xg, r2, p.pos_mass[j].w / f.rest_density);
+        add(mirror_direction(walls, image, p.surface_normal[j]), xi - xg, r2, p.pos_mass[j].w / f.rest_density);
       });
     }
   }
