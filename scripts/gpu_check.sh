@@ -229,6 +229,8 @@ run() {
     step "frames host = cuda: jelly springs and water" 60 frames_match jelly viscoelastic.json --time 0.15 --frames-every 0.03 \
          --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02
     step "frames host = cuda: contact angles (sheared images)" 60 frames_match contact contact_angle.json --time 0.05 --frames-every 0.01
+    step "frames host = cuda: compound drop (interface tension, csf)" 60 frames_match compound compound_drop.json --time 0.05 \
+         --frames-every 0.01 --set resolution.spacing=0.006
     if command -v compute-sanitizer >/dev/null; then
       step "compute-sanitizer memcheck (20 steps)" 90 memcheck
     else

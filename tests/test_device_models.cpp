@@ -178,6 +178,13 @@ TEST_CASE("device models: contact angles under the continuum surface force (DFSP
              100);
 }
 
+TEST_CASE("device models: interface tension under the continuum surface force (DFSPH)", "[device][models][interface]") {
+  // Issue 15: each particle's share of the interface's tension (surface_tension_csf.h, csf_interface_share), a
+  // neighbour loop in the force pass; a drop within a drop, so a free surface and an interface both act.
+  const sph::Scene scene = scene_file("compound_drop.json", {"resolution.spacing=0.01"});
+  check_case(scene, {{"interface share", [](sph::SimConstants& c) { c.csf_interface_enabled = 0; }}}, 60);
+}
+
 TEST_CASE("device models: interface tension between two fluids", "[device][models][interface]") {
   // Issue 15: the cohesion between two fluids (forces.h, interface_cohesion), a loop of its own.
   const sph::Scene scene = scene_file("interface_drop.json", {"resolution.spacing=0.01"});

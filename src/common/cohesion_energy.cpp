@@ -61,11 +61,19 @@ double adhesion_first_layer_energy(double adhesion, double mass, double spacing,
   return adhesion * mass * h * sum;
 }
 
+double csf_contact_energy(double sigma, double contact_angle_deg, double spacing, double mass) {
+  return sigma * (1.0 + std::cos(contact_angle_deg * 3.14159265358979323846 / 180.0)) * spacing * spacing / mass;
+}
+
 std::vector<double> cohesion_excess_energy(const SimConstants& c, const ParticleState& ps, double spacing) {
   std::vector<double> excess(ps.size(), 0.0);
   // PBF has no cohesion (it ignores surface_tension, said at set-up): nothing to release.
   // Either surface-tension model: the cohesion constant calibrated to sigma measures the surface energy.
-  const bool cross = c.interface_cohesion_enabled != 0;  // the cohesion between two fluids (interface tension)
+  // The cohesion between two fluids (an interface tension): as a force under the cohesion model, for this
+  // estimate of the interface's energy under either.
+  bool cross = false;
+  for (int32_t a = 0; a < c.num_fluids; ++a)
+    for (int32_t b = 0; b < c.num_fluids; ++b) cross = cross || c.cross_cohesion[a][b] != 0.0f;
   if (!(c.surface_tension_enabled || c.csf_enabled || cross) || c.solver == Solver::Pbf || ps.size() == 0) return excess;
   const double h = c.kernel.h;
   // A particle's share in the bulk: half the sum over a full cubic lattice of spacing d, per unit mass^2.

@@ -43,6 +43,12 @@ double adhesion_constant(double cohesion, double contact_angle_deg, double spaci
 // binds more (15% at 0.9 d), one in an edge or a corner of walls about 2 or 3 times as much.
 double adhesion_first_layer_energy(double adhesion, double mass, double spacing, double h);
 
+// The work of adhesion one particle of a fluid with surface tension sigma [N/m] and mass m [kg] releases by
+// reaching a wall it meets at the contact angle theta [degrees] under the continuum surface force
+// (surface_tension_csf.h) [J/kg]: Young and Dupre's sigma (1 + cos theta) over the particle's face d^2, d
+// the spacing [m]. The energy budget counts it for every particle, as adhesion_first_layer_energy above.
+double csf_contact_energy(double sigma, double contact_angle_deg, double spacing, double mass);
+
 // Per particle of ps, its cohesive energy above that of a particle inside a cubic lattice of spacing d
 // filled with its fluid [J/kg], e_a = 1/2 sum_b u(r_ab) over the particles of its fluid, (e_a - e_bulk) / m_a,
 // at least 0. All zero (and no neighbour search) where no fluid has surface tension. ps: positions, fluids.

@@ -335,6 +335,8 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   c.pbf = scene.pbf;
   c.gravity = f3(scene.gravity);
   c.num_fluids = int32_t(scene.fluids.size());
+  const bool csf = scene.surface_tension_model == SurfaceTensionModel::Csf;
+  const double chi = csf_band_integral(s.spacing, s.h, s.lattice_density);
   const double d3 = s.spacing * s.spacing * s.spacing;
   for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
     const FluidSpec& f = scene.fluids[i];
@@ -349,7 +351,6 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.artificial_alpha = float(f.artificial_viscosity);
     fc.near_stiffness = float(f.near_stiffness);
     fc.cohesion = float(cohesion_from_surface_tension(f.surface_tension, f.rest_density, s.h));
-    const bool csf = scene.surface_tension_model == SurfaceTensionModel::Csf;
     const bool contact = f.contact_angle > 0.0;
     fc.adhesion = contact && !csf ? float(adhesion_constant(fc.cohesion, f.contact_angle, s.spacing, s.h)) : 0.0f;
     fc.csf_contact = contact && csf ? 1 : 0;
@@ -370,7 +371,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.spring_yield = float(f.spring_yield);
     fc.spring_plasticity = float(f.spring_plasticity);
     if (f.near_stiffness > 0.0) c.near_enabled = 1;
-    fc.csf_sigma = float(f.surface_tension / csf_band_integral(s.spacing, s.h, s.lattice_density));
+    fc.csf_sigma = float(f.surface_tension / chi);
     fc.particle_side = float(std::cbrt(double(fc.mass) / f.rest_density));
     if (f.surface_tension > 0.0) (csf ? c.csf_enabled : c.surface_tension_enabled) = 1;
     if (f.xsph > 0.0) c.xsph_enabled = 1;
@@ -383,7 +384,13 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     const FluidSpec &fa = scene.fluids[std::size_t(t.a)], &fb = scene.fluids[std::size_t(t.b)];
     const float k = float(cross_cohesion(fa.surface_tension, fb.surface_tension, t.sigma, fa.rest_density, fb.rest_density, s.h));
     c.cross_cohesion[t.a][t.b] = c.cross_cohesion[t.b][t.a] = k;
-    if (k != 0.0f) c.interface_cohesion_enabled = 1;
+    if (csf) {  // each particle's share of the interface's tension (surface_tension_csf.h)
+      c.fluids[t.a].csf_interface_sigma = c.fluids[t.b].csf_interface_sigma = float(t.sigma / chi);
+      c.csf_interface_enabled = c.csf_enabled = 1;
+    }
+    // Under the continuum surface force the cross cohesion stays for the energy budget only
+    // (cohesion_energy.h), as a fluid's own cohesion does.
+    if (k != 0.0f && !csf) c.interface_cohesion_enabled = 1;
   }
   s.viscous_rate = viscous_rate(c, s.spacing, s.h, s.lattice_density);
   c.artificial_rate = float(artificial_viscous_rate(c, s.spacing, s.h, s.lattice_density));

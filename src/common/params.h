@@ -106,6 +106,9 @@ struct FluidConstants {
   float near_stiffness;    // k_near [m^2/s^2], P_near = k_near rho_near (thesis 3.1); 0 disables
   float cohesion;          // 8 sigma / (pi rho0^2 h^5 J4) [m/(kg s^2)], cohesion from sigma (guided_creation.h); 0 disables
   float csf_sigma;         // sigma / chi [N/m] of the continuum surface force (surface_tension_csf.h)
+  // sigma_ab / chi [N/m] at the fluid's interface with the other fluid of an interface tension under the
+  // continuum surface force (surface_tension_csf.h); 0: none
+  float csf_interface_sigma;
   // cbrt(m / rho0) [m], a particle's side, which the continuum surface force's curvature offset reads
   // (surface_tension_csf.h); computed on the host, since cbrtf differs in its last bit between glibc and CUDA
   float particle_side;
@@ -187,7 +190,10 @@ struct SimConstants {
   int32_t adhesion_enabled;         // any fluid with an adhesion to boundary particles (contact_angle)
   int32_t csf_contact_enabled;      // any fluid with a contact angle under the continuum surface force
   int32_t interface_cohesion_enabled;  // any cross_cohesion != 0 (an interface tension between two fluids)
-  int32_t csf_enabled;              // any fluid with surface_tension > 0 under the continuum surface force
+  int32_t csf_enabled;              // any fluid with surface_tension > 0 or an interface tension under the continuum surface force
+  // An interface tension between two fluids under the continuum surface force (surface_tension_csf.h): each
+  // particle's force takes its share of the interface's tension.
+  int32_t csf_interface_enabled;
   int32_t xsph_enabled;             // any fluid with xsph > 0
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
   float artificial_rate;            // lambda_max of that term [1/s] (viscous_limit.h)

@@ -142,11 +142,18 @@ void check_contact_angle(const Scene& scene) {
 void check_interface_tension(const Scene& scene) {
   if (scene.interface_tensions.empty()) return;
   const std::string key = scene.source + ": interface_tension";
-  if (scene.surface_tension_model != SurfaceTensionModel::Cohesion)
-    throw SceneError(key + ": needs sph.surface_tension = \"cohesion\" (it is a cohesion between the two fluids' "
-                           "particles); the continuum surface force (\"csf\") acts on each fluid's own surface only");
   if (scene.solver == Solver::Pbf)
     throw SceneError(key + ": solver \"pbf\" has no surface tension; use \"wcsph\" or \"dfsph\"");
+  if (scene.surface_tension_model != SurfaceTensionModel::Csf) return;
+  // The share of the other fluid (surface_tension_csf.h) counts every fluid but a particle's own as one.
+  if (scene.fluids.size() != 2)
+    throw SceneError(key + ": under sph.surface_tension = \"csf\" an interface tension is between the scene's two "
+                           "fluids, and this scene has " + std::to_string(scene.fluids.size()) +
+                     "; use sph.surface_tension = \"cohesion\" for interface tensions among more fluids");
+  for (std::size_t i = 0; i < scene.fluids.size(); ++i)
+    if (scene.fluids[i].contact_angle > 0.0)
+      throw SceneError(key + ": under sph.surface_tension = \"csf\" an interface tension and a contact angle are "
+                             "not run together; remove " + fluid_key(i) + ".contact_angle (or the interface_tension)");
 }
 
 void check_springs(const Scene& scene) {

@@ -40,8 +40,10 @@ void check_springs(const Scene& scene);
 // hold. SceneError naming the key otherwise.
 void check_contact_angle(const Scene& scene);
 
-// An interface tension (scene key interface_tension) only under the cohesion model and a solver with surface
-// tension (not PBF). SceneError naming the key otherwise.
+// An interface tension (scene key interface_tension) only with a solver with surface tension (not PBF), and
+// under the continuum surface force (surface_tension_csf.h, csf_interface_share) only between the scene's two
+// fluids, none of which has a contact angle (the share reads no images). SceneError naming
+// the key otherwise.
 void check_interface_tension(const Scene& scene);
 
 constexpr double kElasticWaveLimit = 0.5;

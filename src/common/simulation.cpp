@@ -89,18 +89,15 @@ void Simulation::rebase_energy(const ParticleState& ps) {
   max_specific_in_ = -std::numeric_limits<double>::infinity();
   // Surface tension's share: the surface energy the cohesion can release (cohesion_energy.h).
   const std::vector<double> surface = cohesion_excess_energy(c, ps, setup_.spacing);
-  // The adhesion's share: what a particle releases by reaching a wall (cohesion_energy.h).
+  // The adhesion's share: what a particle releases by reaching a wall, under either model (cohesion_energy.h).
   double adhesion[kMaxFluids] = {};
-  // Under the continuum surface force: the work of adhesion sigma (1 + cos theta) (Young and Dupre) over a
-  // particle's face d^2, as if every particle could reach a wall.
   for (int32_t k = 0; k < c.num_fluids; ++k) {
     const FluidConstants& f = c.fluids[k];
+    const FluidSpec& spec = scene_.fluids[std::size_t(k)];
     if (f.adhesion > 0.0f)
       adhesion[k] = adhesion_first_layer_energy(f.adhesion, f.mass, setup_.spacing, c.kernel.h);
     else if (f.csf_contact)
-      adhesion[k] = scene_.fluids[std::size_t(k)].surface_tension *
-                    (1.0 + std::cos(scene_.fluids[std::size_t(k)].contact_angle * kPiDouble / 180.0)) * setup_.spacing *
-                    setup_.spacing / double(f.mass);
+      adhesion[k] = csf_contact_energy(spec.surface_tension, spec.contact_angle, setup_.spacing, f.mass);
   }
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.age[i] >= kRemovedAge) continue;

@@ -47,6 +47,17 @@ struct CsfForceFn {
   }
 };
 
+// The force of a fluid with an interface tension (surface_tension_csf.h, csf_interface_acceleration).
+template <class C>
+struct CsfInterfaceForceFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) p.acc[i] += csf_interface_acceleration(*c, g, p, i);
+  }
+};
+
 template <class C>
 struct InterfaceCohesionFn {
   C c;
@@ -73,7 +84,10 @@ void continuum_surface_force(Exec& x) {
   x.for_each(CsfNormalFn<C>{x.constants(), x.grid(), x.particles()});
   if (x.host_constants().csf_contact_enabled) x.for_each(CsfContactNormalFn<C>{x.constants(), x.grid(), x.particles()});
   x.for_each(CsfCurvatureFn<C>{x.constants(), x.grid(), x.particles()});
-  x.for_each(CsfForceFn<C>{x.constants(), x.particles()});
+  if (x.host_constants().csf_interface_enabled)
+    x.for_each(CsfInterfaceForceFn<C>{x.constants(), x.grid(), x.particles()});
+  else
+    x.for_each(CsfForceFn<C>{x.constants(), x.particles()});
 }
 
 }  // namespace sph
