@@ -228,6 +228,8 @@ run() {
     step "frames host = cuda: drop with surface tension" 60 frames_match drop_sigma drop_oscillation.json --time 0.05 --frames-every 0.01
     step "frames host = cuda: jelly springs and water" 60 frames_match jelly viscoelastic.json --time 0.15 --frames-every 0.03 \
          --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02
+    step "frames host = cuda: jelly springs under DFSPH" 60 frames_match jelly_dfsph viscoelastic.json --time 0.15 --frames-every 0.03 \
+         --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02 --set solver=dfsph
     step "frames host = cuda: contact angles (sheared images)" 60 frames_match contact contact_angle.json --time 0.05 --frames-every 0.01
     step "frames host = cuda: compound drop (interface tension, csf)" 60 frames_match compound compound_drop.json --time 0.05 \
          --frames-every 0.01 --set resolution.spacing=0.006
@@ -247,7 +249,7 @@ run() {
   else
     local s
     for s in "device tests, cuda, bitwise (--fmad=false)" "device tests, cuda, default build (rounding reach)" \
-             "frames host = cuda (14 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
+             "frames host = cuda (16 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
              "interop probe: cuda writes GL buffers (EGL)"; do
       skip "$s" "no GPU"
     done

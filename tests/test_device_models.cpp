@@ -159,6 +159,15 @@ TEST_CASE("device models: viscoelastic springs beside plain water", "[device][mo
                       }}});
 }
 
+TEST_CASE("device models: viscoelastic springs under DFSPH", "[device][models][viscoelastic][dfsph]") {
+  // The springs in DFSPH's non-pressure forces (solvers/dfsph.h), plasticity once per step.
+  const sph::Scene scene = scene_file("viscoelastic.json", {"resolution.particles_across=6", "fluids.0.spring_plasticity=2",
+                                                            "fluids.0.spring_yield=0.02", "solver=dfsph"});
+  check_case(scene, {{"springs", [](sph::SimConstants& c) {
+                        for (auto& f : c.fluids) f.spring_stiffness = 0.0f;
+                      }}});
+}
+
 TEST_CASE("device models: the continuum surface force on a free drop", "[device][models][surface_tension]") {
   const sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=8", "solver=wcsph", "sph.surface_tension=csf"});
   const auto phases = check_case(scene, {{"continuum surface force", [](sph::SimConstants& c) { c.csf_enabled = 0; }}});

@@ -67,6 +67,7 @@ const char* limit_name(StepLimit l) {
     case StepLimit::Acceleration: return "acceleration";
     case StepLimit::Sound: return "sound speed";
     case StepLimit::Viscosity: return "viscosity";
+    case StepLimit::Springs: return "springs";
     case StepLimit::Minimum: return "dt_min";
     case StepLimit::Maximum: return "dt_max";
   }

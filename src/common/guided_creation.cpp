@@ -368,6 +368,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     }
     fc.spring_stiffness = float(law.stiffness / double(fc.mass));
     fc.spring_exponent = float(law.exponent);
+    s.spring_rate = std::max(s.spring_rate, spring_rate(double(fc.spring_stiffness), law.exponent, s.spacing, s.h));
     fc.spring_yield = float(f.spring_yield);
     fc.spring_plasticity = float(f.spring_plasticity);
     if (f.near_stiffness > 0.0) c.near_enabled = 1;

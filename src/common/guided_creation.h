@@ -29,6 +29,7 @@ struct Setup {
   double lattice_density = 0.0;    // sum_b W_poly6 over a cubic lattice of spacing d, times d^3
   double max_speed_of_sound = 0.0;
   double viscous_rate = 0.0;       // lambda_max of the viscous operator [1/s] (viscous_limit.h)
+  double spring_rate = 0.0;        // a bound on the springs' fastest angular frequency [1/s] (springs.h); 0: none
   double blowup_speed = 0.0;       // speeds above this stop the run
   double expected_particles = 0.0; // instant particles plus the jets' steady state
   int32_t next_id = 0;

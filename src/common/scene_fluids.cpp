@@ -163,8 +163,9 @@ void check_springs(const Scene& scene) {
     const std::string key = fluid_key(i) + ".spring_modulus";
     std::ostringstream os;
     os << scene.source << ": " << key << ": ";
-    if (scene.solver != Solver::Wcsph) {
-      os << "springs (a viscoelastic fluid) run with solver \"wcsph\" only, not \"" << solver_name(scene.solver) << "\"";
+    if (scene.solver == Solver::Pbf) {
+      os << "springs (a viscoelastic fluid) run with solver \"wcsph\" or \"dfsph\", not \"pbf\" (its constraint "
+            "solve moves particles without forces)";
       throw SceneError(os.str());
     }
     if (!scene.initial_state.empty()) {
@@ -178,8 +179,9 @@ void check_springs(const Scene& scene) {
            << " during the run: give the jet a fluid without springs";
         throw SceneError(os.str());
       }
+    // WCSPH's step follows the speed of sound; DFSPH's has a limit of the springs' own (time_step.h).
     const double limit = kElasticWaveLimit * kElasticWaveLimit * f.rest_density * f.speed_of_sound * f.speed_of_sound;
-    if (f.spring_modulus > limit) {
+    if (scene.solver == Solver::Wcsph && f.spring_modulus > limit) {
       os << f.spring_modulus << " Pa makes elastic waves (sqrt(G / rho0) = " << std::sqrt(f.spring_modulus / f.rest_density)
          << " m/s) faster than " << kElasticWaveLimit << " x " << fluid_key(i) << ".speed_of_sound; allowed: at most "
          << limit << " Pa at this speed of sound (or raise the speed of sound)";

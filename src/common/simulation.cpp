@@ -263,7 +263,8 @@ void Simulation::switch_backend(const BackendFactory& factory) {
 StepChoice Simulation::choose_step() const {
   if (setup_.constants.solver != Solver::Wcsph)
     return choose_incompressible_step(scene_.time_step, setup_.spacing, setup_.viscous_rate, diag_.max_speed, setup_.h,
-                                      setup_.constants.solver == Solver::Dfsph ? diag_.max_accel : 0.0);
+                                      setup_.constants.solver == Solver::Dfsph ? diag_.max_accel : 0.0,
+                                      setup_.spring_rate);
   return choose_time_step(scene_.time_step, setup_.h, setup_.max_speed_of_sound, setup_.viscous_rate,
                           diag_.max_speed, diag_.max_accel);
 }

@@ -52,6 +52,13 @@ SpringLaw spring_law(double modulus, double spacing, double h) {
   return SpringLaw{2.0 * d * d * d * modulus / shear(p), p};
 }
 
+double spring_rate(double stiffness_per_mass, double exponent, double spacing, double h) {
+  if (!(stiffness_per_mass > 0.0)) return 0.0;
+  const double d = spacing;
+  const double bonds = lattice_sum(d, h, [&](double r2) { return r2 > 0.0 ? std::pow(d * d / r2, 0.5 * exponent) : 0.0; });
+  return std::sqrt(2.0 / 3.0 * stiffness_per_mass * bonds);
+}
+
 SpringNetwork create_springs(const SimConstants& c, const ParticleState& ps, double spacing) {
   SpringNetwork net;
   bool any = false;

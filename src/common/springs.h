@@ -72,6 +72,18 @@ struct SpringLaw {
 };
 SpringLaw spring_law(double modulus, double spacing, double h);
 
+// The fastest angular frequency [1/s] of the spring network of a fluid with k / m = stiffness_per_mass
+// (d / L)^exponent [1/s^2] (spring_law) on the start's cubic lattice of spacing d [m] and support h [m]:
+// omega_max^2 <= 2/3 sum_b k_b / m over one particle's bonds. The lattice's dynamical matrix at wave vector q
+// is D(q) = sum_b k_b (1 - cos q.x_b) e_b e_b^T / m, each term at most 2 k_b e_b e_b^T / m, and on the cubic
+// lattice sum_b k_b e_b e_b^T = (sum_b k_b / 3) I. (Gershgorin's bound on the stiffness matrix, 2 sum_b k_b /
+// m, is 3 times that: a step at its limit would be 1.7 times shorter than needed; tests/test_viscoelastic.cpp
+// measures 0.96 of this bound on a 7^3 block.) An explicit step (symplectic Euler, as DFSPH advances its
+// non-pressure forces) is stable for omega dt < 2; DFSPH's step keeps omega_max dt below a fraction of that
+// (time_step.h, choose_incompressible_step), which also covers a network strained away from the lattice. The
+// stiffness is fixed at the start (plasticity changes rest lengths only). 0 without springs.
+double spring_rate(double stiffness_per_mass, double exponent, double spacing, double h);
+
 // Springs between every two particles of one fluid with spring_stiffness > 0 closer than h, with their
 // distance L as rest length and k / m = spring_stiffness (d / L)^spring_exponent (spring_law; d: the
 // lattice spacing [m]). Empty when no fluid has springs. Throws std::invalid_argument when a particle would

@@ -11,7 +11,13 @@
 
 namespace sph {
 
-enum class StepLimit { Fixed, Velocity, Acceleration, Sound, Viscosity, Minimum, Maximum };
+enum class StepLimit { Fixed, Velocity, Acceleration, Sound, Viscosity, Springs, Minimum, Maximum };
+
+// The incompressible solvers' step with springs: omega_max dt <= this fraction of the explicit bound 2
+// (springs.h, spring_rate, the lattice's fastest frequency). Half, as the viscous limit's default
+// cfl_viscosity: a strained network's bonds turn from the lattice's directions, and a particle's largest
+// stiffness can grow up to 3 times the lattice's (all its bonds in one direction).
+constexpr double kSpringStepFraction = 0.5;
 
 struct StepChoice {
   double dt;
@@ -48,10 +54,11 @@ inline StepChoice choose_time_step(const TimeStepSpec& t, double h, double c0, d
 // viscosity is integrated explicitly) and, where a_max > 0 is given (DFSPH: the largest non-pressure
 // acceleration), WCSPH's dt <= C_a sqrt(h / a_max), h the support [m]: without it the cohesion of a 4 cm drop
 // (about 600 m/s^2 at its surface) compressed it by 47% in a 1.5 ms step, which the density solve could not
-// undo (scenes/wetting.json; the 16k dam break's steps are unchanged by it); clamped to [min, max]. Fixed:
-// time_step.dt.
+// undo (scenes/wetting.json; the 16k dam break's steps are unchanged by it), and with springs of fastest
+// angular frequency at most spring_rate [1/s] (springs.h) dt <= kSpringStepFraction 2 / spring_rate; clamped
+// to [min, max]. Fixed: time_step.dt.
 inline StepChoice choose_incompressible_step(const TimeStepSpec& t, double spacing, double viscous_rate, double v_max,
-                                            double h = 0.0, double a_max = 0.0) {
+                                            double h = 0.0, double a_max = 0.0, double spring_rate = 0.0) {
   if (t.mode == TimeStepMode::Fixed) return {t.dt, StepLimit::Fixed};
   double dt = t.max;
   StepLimit limit = StepLimit::Maximum;
@@ -66,6 +73,10 @@ inline StepChoice choose_incompressible_step(const TimeStepSpec& t, double spaci
   if (viscous_rate > 0.0 && t.cfl_viscosity * kViscousStabilityBound / viscous_rate < dt) {
     dt = t.cfl_viscosity * kViscousStabilityBound / viscous_rate;
     limit = StepLimit::Viscosity;
+  }
+  if (spring_rate > 0.0 && kSpringStepFraction * 2.0 / spring_rate < dt) {
+    dt = kSpringStepFraction * 2.0 / spring_rate;
+    limit = StepLimit::Springs;
   }
   if (dt < t.min) return {t.min, StepLimit::Minimum};
   return {dt, limit};

@@ -264,6 +264,25 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   return it;
 }
 
+// The non-pressure forces of the current positions and velocities into acc. plastic_dt [s]: the time over
+// which the springs' rest lengths yield (springs.h), the step's dt once per step and 0 in the viscous
+// sub-steps, which recompute the forces at the same positions.
+template <class Exec>
+void non_pressure_forces(Exec& x, float plastic_dt) {
+  using C = typename Exec::Constants;
+  x.for_each(ForceInputsFn{x.particles()});
+  x.for_each(wcsph::ForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
+  if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
+  if (x.grid().boundary.n > 0 || x.grid().num_bodies > 0)
+    x.for_each(BoundaryHydrostaticFn<C>{x.constants(), x.grid(), x.particles()});
+  continuum_surface_force(x);  // surface_forces.h
+  interface_cohesion_forces(x);
+  if (x.springs().capacity > 0) {  // viscoelastic springs (springs.h), as in WCSPH's forces
+    x.for_each(wcsph::IndexParticleFn{x.springs(), x.particles()});
+    x.for_each(wcsph::SpringForcesFn<C>{x.constants(), x.springs(), x.particles(), plastic_dt});
+  }
+}
+
 // Runs phase ph of a DFSPH step (one of kDfsphPhases) on the back end's Exec; the solves record what they
 // did in stats.
 template <class Exec>
@@ -271,15 +290,7 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
   using C = typename Exec::Constants;
   const SimConstants& c = x.host_constants();
   switch (ph) {
-    case Phase::Forces:
-      x.for_each(ForceInputsFn{x.particles()});
-      x.for_each(wcsph::ForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
-      if (x.grid().num_bodies > 0) x.for_each(BodyForcesFn<C, NonPressureForces>{x.constants(), x.grid(), x.particles()});
-      if (x.grid().boundary.n > 0 || x.grid().num_bodies > 0)
-        x.for_each(BoundaryHydrostaticFn<C>{x.constants(), x.grid(), x.particles()});
-      continuum_surface_force(x);  // surface_forces.h
-      interface_cohesion_forces(x);
-      return;
+    case Phase::Forces: non_pressure_forces(x, dt); return;
     case Phase::Predict: {
       // The non-pressure forces are explicit. The artificial viscosity's rate (scaled by c0, which no
       // DFSPH step is limited by) can exceed 2 / dt at large steps: the resting column at 2.6 ms, alpha 0.2,
@@ -290,7 +301,7 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
       const int32_t n = viscous_substeps(double(c.substep_rate), double(dt));
       for (int32_t k = 1; k < n; ++k) {
         x.for_each(PredictVelocityFn{x.particles(), dt / float(n)});
-        run_phase(x, Phase::Forces, dt, stats);
+        non_pressure_forces(x, 0.0f);
       }
       x.for_each(PredictVelocityFn{x.particles(), dt / float(n)});
       stats.viscous_substeps = n;
