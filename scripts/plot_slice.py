@@ -49,7 +49,7 @@ def main():
         centre = p[mine].mean(axis=0) if mine.any() else p.mean(axis=0)
         cut = np.abs(p[:, 2] - centre[2]) < 0.5 * args.spacing
         row[0].scatter(p[cut, 0], p[cut, 1], s=6, c=colours[fluid[cut] % len(colours)])
-        row[0].set_title(f"t = {time:.2f} s: fluids, slice z = {centre[2]:.3f} m")
+        row[0].set_title(f"t = {time:.2f} s: fluids, slice z = {round(float(centre[2]), 3) + 0.0:.3f} m")
         sc = row[1].scatter(p[cut, 0], p[cut, 1], s=6, c=a["pr"][cut], cmap="viridis")
         fig.colorbar(sc, ax=row[1], label="pressure [Pa]")
         row[1].set_title("pressure")

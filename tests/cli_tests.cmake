@@ -524,9 +524,16 @@ sph_cli_test(multiphase_soft_light_fluid
 sph_cli_test(surface_tension_too_soft
   --exit 1 --stderr "fluids.0.speed_of_sound" --stderr "surface_tension" --stderr "at least"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/drop_oscillation.json --set fluids.0.speed_of_sound=5 --set solver=wcsph --set sph.surface_tension=cohesion --out ${SPH_CLI_OUT}/sigma_soft)
-sph_cli_test(springs_dfsph_refused
-  --exit 1 --stderr "fluids.0.spring_modulus" --stderr "wcsph"
-  -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=dfsph --out ${SPH_CLI_OUT}/springs_dfsph)
+sph_cli_test(springs_pbf_refused
+  --exit 1 --stderr "fluids.0.spring_modulus" --stderr "pbf"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=pbf --out ${SPH_CLI_OUT}/springs_pbf)
+sph_cli_test(springs_dfsph_fixed_step_refused
+  --exit 1 --stderr "time_step.dt" --stderr "springs" --stderr "adaptive"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=dfsph --set time_step.mode=fixed --set time_step.dt=0.001
+     --out ${SPH_CLI_OUT}/springs_dfsph_fixed)
+sph_cli_test(interface_tension_csf_contact_refused
+  --exit 1 --stderr "interface_tension" --stderr "fluids.0.contact_angle"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/compound_drop.json --set fluids.0.contact_angle=90 --out ${SPH_CLI_OUT}/interface_contact)
 sph_cli_test(contact_angle_csf_refused
   --exit 1 --stderr "fluids.0.contact_angle" --stderr "cohesion"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/wetting.json --set sph.surface_tension=csf --out ${SPH_CLI_OUT}/contact_csf)

@@ -204,6 +204,12 @@ TEST_CASE("springs where they cannot be kept are refused by name", "[viscoelasti
   // DFSPH's step has a limit of the springs' own: the stiffer jelly is taken there.
   const sph::Setup stiff = sph::create_setup(scene_file("viscoelastic.json", {"solver=dfsph", "fluids.0.spring_modulus=2e5"}), 1.0);
   CHECK(stiff.spring_rate > 0.0);
+  // A fixed step, or a least step, above the springs' limit would override it: refused with the bound.
+  CHECK_THROWS_WITH(sph::create_setup(scene_file("viscoelastic.json", {"solver=dfsph", "time_step.mode=fixed",
+                                                                      "time_step.dt=0.001"}), 1.0),
+                    Contains("time_step.dt") && Contains("springs") && Contains("adaptive"));
+  CHECK_THROWS_WITH(sph::create_setup(scene_file("viscoelastic.json", {"solver=dfsph", "time_step.min=0.001"}), 1.0),
+                    Contains("time_step.min") && Contains("springs"));
   CHECK_THROWS_WITH(scene_file("viscoelastic.json", {"fluids.0.spring_modulus=-1"}), Contains("fluids.0.spring_modulus"));
   CHECK_THROWS_WITH(scene_file("viscoelastic.json", {"fluids.0.spring_yield=-0.1"}), Contains("fluids.0.spring_yield"));
   // Too few neighbours for bonds off the axes: no shear to calibrate, refused by name.

@@ -407,7 +407,7 @@ int run(const Options& o) {
         last_progress = t1;
         const double wall = std::chrono::duration<double>(t1 - start).count();
         const double frac = by_steps ? double(sim.steps()) / double(o.steps) : sim.time() / run_time;
-        const double eta = frac > 0 ? wall * (1.0 - frac) / frac : 0.0;
+        const double eta = frac > 0 && frac < 1 ? wall * (1.0 - frac) / frac : 0.0;  // never "-0 s"
         std::fprintf(stderr, "\r  t = %.4f s  step %ld  dt = %.2e s (%s)  %.1f steps/s  %zu particles  %3.0f%%  ETA %.0f s   ",
                      sim.time(), sim.steps(), sim.last_dt(), limit_name(sim.last_limit()), sim.steps() / wall,
                      sim.backend().size(), 100.0 * frac, eta);

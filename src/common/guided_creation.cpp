@@ -93,6 +93,24 @@ void check_incompressible_step(const Scene& scene, double spacing) {
   throw SceneError(os.str());
 }
 
+// DFSPH's springs: a fixed step, or a least step, above the springs' own limit (time_step.h,
+// kSpringStepFraction 2 / spring_rate) would override it, and the jelly blows up (fixed 1 ms under the 20 kPa
+// jelly of scenes/viscoelastic.json: within 14 steps). spring_rate [1/s]: springs.h.
+void check_spring_step(const Scene& scene, double spring_rate) {
+  if (scene.solver == Solver::Wcsph || !(spring_rate > 0.0)) return;
+  const double bound = kSpringStepFraction * 2.0 / spring_rate;
+  const bool fixed = scene.time_step.mode == TimeStepMode::Fixed;
+  const double dt = fixed ? scene.time_step.dt : scene.time_step.min;
+  if (dt <= bound) return;
+  std::ostringstream os;
+  os << scene.source << ": " << (fixed ? "time_step.dt" : "time_step.min") << ": " << dt << " s is too long a step for "
+     << "the springs (spring_modulus) under solver \"" << solver_name(scene.solver) << "\": their fastest mode, "
+     << spring_rate << " rad/s, needs dt <= " << kSpringStepFraction << " x 2 / " << spring_rate << " = " << bound
+     << " s (a longer explicit step makes them ring ever louder). Allowed: at most " << bound << " s"
+     << (fixed ? " (or \"mode\": \"adaptive\", which keeps to it)" : "") << ", or a smaller spring_modulus";
+  throw SceneError(os.str());
+}
+
 Vec3 f3(const Vec3d& v) { return Vec3{float(v[0]), float(v[1]), float(v[2])}; }
 
 std::string metres(double x) {
@@ -316,8 +334,8 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   check_incompressible_step(scene, s.spacing);
   check_surface_tension(scene, s.h);
   check_springs(scene);
+  check_interface_tension(scene);  // before the contact angle's walls: the combination is the first thing to say
   check_contact_angle(scene);
-  check_interface_tension(scene);
   report_ignored_settings(scene, s.report);
   s.meshes = load_meshes(scene);
 
@@ -379,6 +397,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     if (f.artificial_viscosity > 0.0) c.artificial_enabled = 1;
     s.max_speed_of_sound = std::max(s.max_speed_of_sound, f.speed_of_sound);
   }
+  check_spring_step(scene, s.spring_rate);
   for (int32_t i = 1; i < c.num_fluids; ++i)
     if (c.fluids[i].mass != c.fluids[0].mass) c.number_density = scene.number_density ? 1 : 0;
   for (const InterfaceTensionSpec& t : scene.interface_tensions) {
