@@ -514,6 +514,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     s.report.push_back(os.str());
   }
   sample_rigid_bodies(scene, c, s.spacing, particle_budget(scene), s.bodies, s.report);
+  check_interface_gas(scene, s);
   try {
     s.springs = create_springs(c, s.particles, s.spacing);
   } catch (const std::invalid_argument& e) {

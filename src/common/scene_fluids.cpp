@@ -5,6 +5,9 @@
 #include <sstream>
 
 #include "guided_creation.h"
+#include "host_neighbours.h"
+#include "kernels.h"
+#include "mirror_walls.h"
 #include "surface_tension_csf.h"
 
 namespace sph {
@@ -154,6 +157,41 @@ void check_interface_tension(const Scene& scene) {
     if (scene.fluids[i].contact_angle > 0.0)
       throw SceneError(key + ": under sph.surface_tension = \"csf\" an interface tension and a contact angle are "
                              "not run together; remove " + fluid_key(i) + ".contact_angle (or the interface_tension)");
+}
+
+void check_interface_gas(const Scene& scene, const Setup& s) {
+  if (scene.interface_tensions.empty() || scene.surface_tension_model != SurfaceTensionModel::Csf) return;
+  const SimConstants& c = s.constants;
+  const ParticleState& ps = s.particles;
+  const double h = s.h;
+  const HostNeighbours neighbours(ps, h, [&](std::size_t a) { return ps.age[a] < kRemovedAge; });
+  const KernelCoeffs& k = c.kernel;
+  long meets[kMaxFluids] = {};
+  long example[kMaxFluids];
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    if (near_walls(c, ps.pos[a]).count > 0) continue;
+    double colour = double(c.fluids[ps.fluid[a]].mass) / c.fluids[ps.fluid[a]].rest_density * poly6(k, 0.0f);  // itself
+    neighbours.for_each(a, [&](std::size_t b, Vec3 x) {
+      const float r2 = dot(x, x);
+      if (r2 < k.h2) colour += double(c.fluids[ps.fluid[b]].mass) / c.fluids[ps.fluid[b]].rest_density * poly6(k, r2);
+    });
+    if (1.0 - colour > kGasDeficit && meets[ps.fluid[a]]++ == 0) example[ps.fluid[a]] = long(a);
+  }
+  for (std::size_t t = 0; t < scene.interface_tensions.size(); ++t) {
+    const InterfaceTensionSpec& it = scene.interface_tensions[t];
+    if (meets[it.a] == 0 || meets[it.b] == 0) continue;
+    std::ostringstream os;
+    os.precision(4);
+    const Vec3 xa = ps.pos[std::size_t(example[it.a])], xb = ps.pos[std::size_t(example[it.b])];
+    os << scene.source << ": interface_tension." << t << ": under sph.surface_tension = \"csf\" an interface tension "
+       << "holds only where at most one of its two fluids meets the gas (a drop of one inside the other, or both in a "
+       << "container they fill), and here both do at the start (" << meets[it.a] << " particles of " << fluid_key(std::size_t(it.a))
+       << ", e.g. at (" << xa.x << ", " << xa.y << ", " << xa.z << "), and " << meets[it.b] << " of " << fluid_key(std::size_t(it.b))
+       << ", e.g. at (" << xb.x << ", " << xb.y << ", " << xb.z << ")): where both meet the gas along a line, two drops "
+       << "side by side flew apart (docs/results.md, \"Interface tension under the continuum surface force\"). Use "
+       << "sph.surface_tension = \"cohesion\" there, or start one fluid inside the other";
+    throw SceneError(os.str());
+  }
 }
 
 void check_springs(const Scene& scene) {
