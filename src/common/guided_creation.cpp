@@ -229,7 +229,10 @@ bool report_fill(const Scene& scene, const Lattice& lattice, const SimConstants&
     const FluidConstants& fc = c.fluids[em.fluid];
     os << ", mass " << metres(double(stats[e].created) * double(fc.mass)) << " kg (rho0 x asked volume: "
        << metres(double(fc.rest_density) * emitter_volume(em)) << " kg)";
-    if (stats[e].shared > 0) os << "; " << stats[e].shared << " lattice points shared with earlier emitters, filled once";
+    // Shared points belong to the earlier emitter: the asked volume above still counts them.
+    if (stats[e].shared > 0)
+      os << "; " << stats[e].shared << " lattice points shared with earlier emitters, filled once by them ("
+         << metres(double(stats[e].shared) * double(fc.mass)) << " kg of this emitter's asked volume)";
     adjusted = adjusted || refit || stats[e].shared > 0;
     report.push_back(os.str());
   }

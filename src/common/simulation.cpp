@@ -333,8 +333,9 @@ void Simulation::check_energy(double dt) {
   if (kinetic <= energy_limit()) return;
   std::ostringstream os;
   os << "kinetic energy " << kinetic << " J, above " << kEnergyMargin << " x the energy budget " << energy_budget()
-     << " J + " << energy_floor() << " J (the initial kinetic, potential and internal energy, potential above the "
-     << "lowest level the fluid can reach, plus what the jets put in); the fastest particle has speed "
+     << " J (the initial kinetic, potential and internal energy, potential above the lowest level the fluid can "
+     << "reach" << (setup_.jets.empty() ? "" : ", plus what the jets put in") << ") + " << energy_floor()
+     << " J (a floor: the kinetic energy of the whole mass at 1% of c0); the fastest particle has speed "
      << diag_.max_speed << " m/s";
   blow_up(os.str(), diag_.fastest, dt);
 }
