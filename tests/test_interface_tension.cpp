@@ -52,6 +52,7 @@ struct Inner {
   double radius = 0.0;      // sqrt(5/3 <|x - x_c|^2>) of the inner fluid [m]
   double outermost = 0.0;   // its farthest particle from its centre [m]
   double equivalent = 0.0;  // the radius of the ball of its volume [m]
+  double centre[3] = {0, 0, 0};  // its centre of mass [m]
 };
 
 Inner measure_inner(const sph::ParticleState& ps, double d) {
@@ -62,6 +63,7 @@ Inner measure_inner(const sph::ParticleState& ps, double d) {
   REQUIRE(n > 0);
   for (double& v : c) v /= double(n);
   Inner out;
+  for (int k = 0; k < 3; ++k) out.centre[k] = c[k];
   double r2 = 0.0;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.fluid[i] != 1) continue;
@@ -212,11 +214,7 @@ TEST_CASE("under DFSPH the continuum surface force's interface tension holds Lap
     while (sim.time() < until) sim.advance();
     const sph::ParticleState& ps = sim.particles();
     const Inner ball = measure_inner(ps, d);
-    double c[3] = {0, 0, 0};
-    long n = 0;
-    for (std::size_t i = 0; i < ps.size(); ++i)
-      if (ps.fluid[i] == 1) c[0] += ps.pos[i].x, c[1] += ps.pos[i].y, c[2] += ps.pos[i].z, ++n;
-    for (double& v : c) v /= double(n);
+    const double* c = ball.centre;
     // Inside: the inner fluid within R / 2 of its centre; outside: the outer fluid 1.5 h beyond the interface
     // and h from the walls.
     double p_in = 0.0, p_out = 0.0;

@@ -98,7 +98,7 @@ void check_incompressible_step(const Scene& scene, double spacing) {
 // jelly of scenes/viscoelastic.json: within 14 steps). spring_rate [1/s]: springs.h.
 void check_spring_step(const Scene& scene, double spring_rate) {
   if (scene.solver == Solver::Wcsph || !(spring_rate > 0.0)) return;
-  const double bound = kSpringStepFraction * 2.0 / spring_rate;
+  const double bound = spring_step_bound(spring_rate);
   const bool fixed = scene.time_step.mode == TimeStepMode::Fixed;
   const double dt = fixed ? scene.time_step.dt : scene.time_step.min;
   if (dt <= bound) return;

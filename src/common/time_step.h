@@ -19,6 +19,9 @@ enum class StepLimit { Fixed, Velocity, Acceleration, Sound, Viscosity, Springs,
 // stiffness can grow up to 3 times the lattice's (all its bonds in one direction).
 constexpr double kSpringStepFraction = 0.5;
 
+// That limit [s] for springs of fastest angular frequency spring_rate [1/s] (> 0).
+inline double spring_step_bound(double spring_rate) { return kSpringStepFraction * 2.0 / spring_rate; }
+
 struct StepChoice {
   double dt;
   StepLimit limit;
@@ -74,8 +77,8 @@ inline StepChoice choose_incompressible_step(const TimeStepSpec& t, double spaci
     dt = t.cfl_viscosity * kViscousStabilityBound / viscous_rate;
     limit = StepLimit::Viscosity;
   }
-  if (spring_rate > 0.0 && kSpringStepFraction * 2.0 / spring_rate < dt) {
-    dt = kSpringStepFraction * 2.0 / spring_rate;
+  if (spring_rate > 0.0 && spring_step_bound(spring_rate) < dt) {
+    dt = spring_step_bound(spring_rate);
     limit = StepLimit::Springs;
   }
   if (dt < t.min) return {t.min, StepLimit::Minimum};

@@ -277,10 +277,7 @@ void non_pressure_forces(Exec& x, float plastic_dt) {
     x.for_each(BoundaryHydrostaticFn<C>{x.constants(), x.grid(), x.particles()});
   continuum_surface_force(x);  // surface_forces.h
   interface_cohesion_forces(x);
-  if (x.springs().capacity > 0) {  // viscoelastic springs (springs.h), as in WCSPH's forces
-    x.for_each(wcsph::IndexParticleFn{x.springs(), x.particles()});
-    x.for_each(wcsph::SpringForcesFn<C>{x.constants(), x.springs(), x.particles(), plastic_dt});
-  }
+  wcsph::spring_forces(x, plastic_dt);  // viscoelastic springs (springs.h), as in WCSPH's forces
 }
 
 // Runs phase ph of a DFSPH step (one of kDfsphPhases) on the back end's Exec; the solves record what they

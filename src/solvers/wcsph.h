@@ -105,6 +105,16 @@ struct SpringForcesFn {
   }
 };
 
+// The springs' forces after a forces loop (either solver's): each particle's place under its id after the
+// grid's reorder, then its spring forces, the rest lengths yielding over plastic_dt [s].
+template <class Exec>
+void spring_forces(Exec& x, float plastic_dt) {
+  if (x.springs().capacity == 0) return;
+  using C = typename Exec::Constants;
+  x.for_each(IndexParticleFn{x.springs(), x.particles()});
+  x.for_each(SpringForcesFn<C>{x.constants(), x.springs(), x.particles(), plastic_dt});
+}
+
 // Before the first forces: the forces see the integrator's velocity.
 struct CopyVelocityFn {
   ParticleView p;
@@ -135,10 +145,7 @@ void run_phase(Exec& x, Phase p, float dt) {
       });
       continuum_surface_force(x);  // surface_forces.h
       interface_cohesion_forces(x);
-      if (x.springs().capacity > 0) {
-        x.for_each(IndexParticleFn{x.springs(), x.particles()});
-        x.for_each(SpringForcesFn<C>{x.constants(), x.springs(), x.particles(), dt});
-      }
+      spring_forces(x, dt);
       update_bodies(x, dt);  // rigid bodies: the reaction to these forces moves them (rigid_bodies.h)
       return;
     case Phase::Correct: x.for_each(CorrectFn<C>{x.constants(), x.particles(), dt}); return;
