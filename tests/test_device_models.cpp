@@ -1,6 +1,7 @@
 // Every model of the solver on the device back end against the serial reference (issue 11, items 5 and
 // 10): both density methods (continuity with dt > 0), both equations of state, both pressure forms, all
-// four viscosity models, XSPH, surface tension, near pressure, all five integrators and mirror walls.
+// four viscosity models, XSPH, surface tension, near pressure, all five integrators, mirror walls and both
+// kernel pairs.
 // Each case runs 200 steps side by side (every field compared after every step), then one step phase by
 // phase from where the run ended; and each model it names must change that step on the reference when it
 // is switched off, so a case cannot pass without exercising its model.
@@ -8,6 +9,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "device_compare.h"
@@ -166,6 +168,17 @@ TEST_CASE("device models: viscoelastic springs under DFSPH", "[device][models][v
   check_case(scene, {{"springs", [](sph::SimConstants& c) {
                         for (auto& f : c.fluids) f.spring_stiffness = 0.0f;
                       }}});
+}
+
+TEST_CASE("device models: WCSPH with the cubic spline kernel, summed and continuity density", "[device][models]") {
+  // sph.kernel = cubic_spline (kernels.h, density_kernel, gradient_dwdr): density, pressure, both viscosities,
+  // against mirror walls' ghosts and against boundary particles.
+  for (const auto& [density, walls] : std::vector<std::pair<std::string, std::string>>{{"summation", "mirror"}, {"continuity", "particles"}}) {
+    INFO("sph.density = " << density << ", sph.walls = " << walls);
+    const sph::Scene scene = scene_file("dam_break.json", {"resolution.particles_across=10", "sph.kernel=cubic_spline",
+                                                           "sph.density=" + density, "sph.walls=" + walls, "sph.viscosity=morris"});
+    check_case(scene, {{"the cubic spline (to Poly6 and Spiky)", [](sph::SimConstants& c) { c.cubic_spline = 0; }}});
+  }
 }
 
 TEST_CASE("device models: the continuum surface force on a free drop", "[device][models][surface_tension]") {

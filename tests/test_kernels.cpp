@@ -192,26 +192,28 @@ TEST_CASE("the near kernel is sharper than Spiky", "[kernels]") {
   }
 }
 
-TEST_CASE("Poly6 summed over a cubic lattice reproduces its integral", "[kernels]") {
-  for (double d : {1.0, 0.013}) {
-    for (double ratio : {2.0, 2.5, 3.0}) {
-      const double h = ratio * d;
-      const sph::KernelCoeffs k = sph::make_kernel_coeffs(h);
-      // Independent sum with the library's float kernel, over a block that surely contains the support.
-      const int n = int(std::ceil(ratio)) + 1;
-      double sum = 0.0;
-      for (int z = -n; z <= n; ++z)
-        for (int y = -n; y <= n; ++y)
-          for (int x = -n; x <= n; ++x) {
-            const double r2 = (double(x) * x + double(y) * y + double(z) * z) * d * d;
-            sum += double(sph::poly6(k, float(r2)));
-          }
-      sum *= d * d * d;
-      const double library = sph::lattice_density_factor(d, h);
-      INFO("d = " << d << ", h = " << h << ": own lattice sum " << sum << ", lattice_density_factor "
-                  << library);
-      CHECK(std::fabs(sum - 1.0) < 0.02);
-      CHECK(std::fabs(library - sum) < 1e-5 * sum);
+TEST_CASE("Poly6 and the cubic spline summed over a cubic lattice reproduce their integral", "[kernels]") {
+  for (const bool cubic : {false, true}) {
+    for (double d : {1.0, 0.013}) {
+      for (double ratio : {1.969, 2.0, 2.5, 3.0}) {
+        const double h = ratio * d;
+        const sph::KernelCoeffs k = sph::make_kernel_coeffs(h);
+        // Independent sum with the library's float kernel, over a block that surely contains the support.
+        const int n = int(std::ceil(ratio)) + 1;
+        double sum = 0.0;
+        for (int z = -n; z <= n; ++z)
+          for (int y = -n; y <= n; ++y)
+            for (int x = -n; x <= n; ++x) {
+              const double r2 = (double(x) * x + double(y) * y + double(z) * z) * d * d;
+              sum += double(cubic ? sph::cubic_spline(k, float(std::sqrt(r2))) : sph::poly6(k, float(r2)));
+            }
+        sum *= d * d * d;
+        const double library = sph::lattice_density_factor(d, h, cubic);
+        INFO((cubic ? "cubic spline" : "Poly6") << ", d = " << d << ", h = " << h << ": own lattice sum " << sum
+                                                << ", lattice_density_factor " << library);
+        CHECK(std::fabs(sum - 1.0) < 0.02);
+        CHECK(std::fabs(library - sum) < 1e-5 * sum);
+      }
     }
   }
 }

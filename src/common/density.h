@@ -11,6 +11,7 @@ namespace sph {
 
 // Summation, thesis eq. 2.10: rho_a = sum_b m_b W_poly6(r_ab), the particle itself included.
 // Continuity, thesis eq. 2.12: rho_a += dt * sum_b m_b (v_a - v_b) . grad W_ab (grad of Spiky).
+// With sph.kernel = cubic_spline both take the cubic spline instead (kernels.h, density_kernel).
 // Near density, thesis 3.1: rho_near_a = sum_b m_b W_near(r_ab).
 // Several fluids (SimConstants::number_density, [SP08] eq. 5, thesis eq. 3.5): rho_a = m_a delta_a with the
 // number density delta_a = sum_b W_ab, i.e. every neighbour counts with a's own mass m_a. Summed with the
@@ -22,11 +23,12 @@ namespace sph {
 SPH_HD_ALWAYS_INLINE void density_pair(const SimConstants& c, bool summation, float mb, Vec3 xab, float r2, Vec3 vab,
                                        float& rho, float& rho_near, float& drho) {
   const KernelCoeffs& k = c.kernel;
-  if (summation) rho += mb * poly6(k, r2);
+  const bool cubic = c.cubic_spline != 0;
+  if (summation) rho += mb * density_kernel(k, cubic, r2);
   if (c.near_enabled || !summation) {
     const float r = sqrtf(r2);
     if (c.near_enabled) rho_near += mb * near_kernel(k, r);
-    if (!summation && r > 0.0f) drho += mb * spiky_grad_fac(k, r) * dot(vab, xab);
+    if (!summation && r > 0.0f) drho += mb * (gradient_dwdr(k, cubic, r) / r) * dot(vab, xab);
   }
 }
 

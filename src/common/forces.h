@@ -24,11 +24,13 @@ namespace sph {
 // as r -> 0.
 constexpr float kPairEps2 = 0.01f;
 
-// XSPH [Monaghan 1989] pair weight, coef m_b W_ab / rho_ab with rho_ab = (rho_a + rho_b) / 2 (Poly6): particle a's
-// velocity correction is the sum of weight * (v_b - v_a). Shared by WCSPH's forces (coef: the fluid's xsph) and
-// PBF ([MM13] eq. 17, pbf.h, coef 1 and c applied to the sum). Dimensionless.
-SPH_HD inline float xsph_pair_weight(const KernelCoeffs& k, float coef, float mb, float r2, float rho_a, float rho_b) {
-  return coef * mb * poly6(k, r2) / (0.5f * (rho_a + rho_b));
+// XSPH [Monaghan 1989] pair weight, coef m_b W_ab / rho_ab with rho_ab = (rho_a + rho_b) / 2 (the density
+// kernel: Poly6, or the cubic spline where `cubic`, SimConstants::cubic_spline): particle a's velocity
+// correction is the sum of weight * (v_b - v_a). Shared by WCSPH's forces (coef: the fluid's xsph) and PBF
+// ([MM13] eq. 17, pbf.h, coef 1 and c applied to the sum, Poly6). Dimensionless.
+SPH_HD inline float xsph_pair_weight(const KernelCoeffs& k, bool cubic, float coef, float mb, float r2, float rho_a,
+                                     float rho_b) {
+  return coef * mb * density_kernel(k, cubic, r2) / (0.5f * (rho_a + rho_b));
 }
 
 // The user force field at x (UserForce, params.h): towards the point (strength > 0), fading linearly to zero
@@ -114,7 +116,7 @@ SPH_HD_ALWAYS_INLINE float artificial_viscosity_pair(const SimConstants& c, cons
 }
 
 // The laminar viscosity of the fluids' mu on pair a-b (the scene's sph.viscosity): its acceleration of a
-// [m/s^2]. r = |x_ab|, grad: grad W_ab's scalar (spiky dW/dr / r).
+// [m/s^2]. r = |x_ab|, grad: grad W_ab's scalar (dW/dr / r of Spiky or the cubic spline: gradient_dwdr).
 SPH_HD_ALWAYS_INLINE Vec3 laminar_viscosity_pair(const SimConstants& c, const PairSide& a, const PairSide& b, float r,
                                                  float r2, float grad, Vec3 vab) {
   const KernelCoeffs& k = c.kernel;
@@ -151,7 +153,7 @@ SPH_HD_ALWAYS_INLINE void pressure_viscosity_pair(const SimConstants& c, const P
   const float r = sqrtf(r2);
   const float inv_r = 1.0f / r;  // the gradients are dW/dr x_ab / r (kernels.h)
   const float mb = b.mass;
-  const float grad = spiky_dwdr(k, r) * inv_r;  // grad W_ab = grad * xab
+  const float grad = gradient_dwdr(k, c.cubic_spline != 0, r) * inv_r;  // grad W_ab = grad * xab (Spiky, or the cubic spline)
 
   // The pressure terms' weights (pressure_pair): m_b, or Monaghan's number-density form's m_a and m_b^2 / m_a.
   const bool number_density = Model::form == PressureForm::MonaghanSymmetric && c.number_density;
@@ -211,7 +213,7 @@ SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides
     const float pb = s.fluid.pressure - s.rho0 * dot(c.gravity, xab);
     const float pw = pb > 0.0f ? pb : 0.0f;
     f = pressure_pair<Model::form>(s.wall.mass, s.wall.mass, s.fluid.pressure, s.fluid.pressure_rho2, s.fluid.inv_rho, pw,
-                                   pw * s.inv_rho0 * s.inv_rho0, s.wall.inv_rho) * spiky_dwdr(k, r) * inv_r;
+                                   pw * s.inv_rho0 * s.inv_rho0, s.wall.inv_rho) * gradient_dwdr(k, c.cubic_spline != 0, r) * inv_r;
     if (Model::near)
       f += pressure_pair<Model::form>(s.wall.mass, s.wall.mass, s.fluid.near_pressure, s.fluid.near_pressure_rho2, s.fluid.inv_rho,
                                       s.wall.near_pressure, s.wall.near_pressure_rho2, s.wall.inv_rho) * near_dwdr(k, r) * inv_r;
@@ -221,7 +223,7 @@ SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides
   // it nothing damped a particle's motion into and out of the wall, and still water over a floor of boundary
   // particles heated up (docs/results.md); on the velocity along the wall only with the wall's friction
   // factor 1 - slip, as the laminar viscosity ([AIA12] eq. 11), so a free-slip wall does not drag.
-  const float grad = spiky_dwdr(k, r) * inv_r;
+  const float grad = gradient_dwdr(k, c.cubic_spline != 0, r) * inv_r;
   const Vec3 vab = s.fluid.vel - vb;
   if (c.artificial_enabled) {
     const Vec3 vn = dot(vab, normal) * normal;
@@ -329,7 +331,7 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
     const float mb = side_b.mass;
     if (c.surface_tension_enabled && &fa == &fb) acc -= cohesion_pair(k, fa.cohesion, mb, r2, xab);
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
-      dv -= xsph_pair_weight(k, fa.xsph, mb, r2, side_a.rho, side_b.rho) * vab;
+      dv -= xsph_pair_weight(k, c.cubic_spline != 0, fa.xsph, mb, r2, side_a.rho, side_b.rho) * vab;
     }
   });
   // Mirror walls: the ghosts of the neighbours, the particle's own included, add pressure, near pressure and

@@ -29,7 +29,14 @@ double smoothing_length(double spacing, double neighbours) {
   return std::cbrt(3.0 * neighbours / (4.0 * pi)) * spacing;
 }
 
-double lattice_density_factor(double d, double h) {
+double lattice_density_factor(double d, double h, bool cubic_spline) {
+  if (cubic_spline) {  // kernels.h, cubic_spline, in double
+    const double c = 8.0 / (kPiDouble * h * h * h);
+    return lattice_sum(d, h, [&](double r2) {
+             const double q = std::sqrt(r2) / h;
+             return q <= 0.5 ? c * (6.0 * q * q * (q - 1.0) + 1.0) : c * 2.0 * std::pow(1.0 - q, 3);
+           }) * d * d * d;
+  }
   const double c = 315.0 / (64.0 * kPiDouble * std::pow(h, 9));
   return lattice_sum(d, h, [&](double r2) { return c * std::pow(h * h - r2, 3); }) * d * d * d;
 }
@@ -57,6 +64,9 @@ namespace {
 void report_ignored_settings(const Scene& scene, std::vector<std::string>& report) {
   if (scene.solver == Solver::Wcsph) return;
   const std::string name = solver_name(scene.solver);
+  if (scene.kernel_set)
+    report.push_back("note: solver \"" + name + "\" ignores sph.kernel (it is WCSPH's; " +
+                     (scene.solver == Solver::Dfsph ? "DFSPH always uses the cubic spline" : "PBF always uses Poly6 with Spiky") + ")");
   if (scene.integrator != Integrator::ModifiedVelocityVerlet)
     report.push_back("note: solver \"" + name + "\" ignores integrator = \"" + integrator_name(scene.integrator) +
                      "\" (it integrates its own way)");
@@ -332,7 +342,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
                                 metres(scene.emitters[i].radius) + " m at spacing " + metres(s.spacing) + " m)");
 
   // The kernel sum over the lattice depends on h / d only: computed at d = 1 it cannot overflow.
-  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing);
+  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing, wcsph_cubic_spline(scene));
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
   check_incompressible_step(scene, s.spacing);
   check_surface_tension(scene, s.h);
@@ -347,6 +357,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   c.density = scene.density;
   c.eos = scene.eos;
   c.pressure_form = scene.pressure_form;
+  c.cubic_spline = wcsph_cubic_spline(scene) ? 1 : 0;
   c.viscosity = scene.viscosity;
   c.integrator = scene.integrator;
   c.clamp_negative_pressure = scene.clamp_negative_pressure;

@@ -26,7 +26,7 @@ struct Setup {
   std::vector<JetEmitter> jets;
   double spacing = 0.0;            // d
   double h = 0.0;                  // support radius
-  double lattice_density = 0.0;    // sum_b W_poly6 over a cubic lattice of spacing d, times d^3
+  double lattice_density = 0.0;    // sum_b W over a cubic lattice of spacing d, times d^3 (lattice_density_factor)
   double max_speed_of_sound = 0.0;
   double viscous_rate = 0.0;       // lambda_max of the viscous operator [1/s] (viscous_limit.h)
   double spring_rate = 0.0;        // a bound on the springs' fastest angular frequency [1/s] (springs.h); 0: none
@@ -43,8 +43,14 @@ struct Setup {
 // V / N = d^3 for particles on a cubic lattice of spacing d.
 double smoothing_length(double spacing, double neighbours);
 
-// sum over the cubic lattice of spacing d of W_poly6(|x|, h), times d^3 (1 for a perfect quadrature).
-double lattice_density_factor(double spacing, double h);
+// sum over the cubic lattice of spacing d of W(|x|, h), times d^3 (1 for a perfect quadrature), W Poly6 or
+// the cubic spline: the density kernel of the run (wcsph_cubic_spline). At h = 1.97 d: 1.0069 and 0.9991.
+double lattice_density_factor(double spacing, double h, bool cubic_spline);
+
+// Whether the scene's WCSPH sums use the cubic spline (sph.kernel = cubic_spline; SimConstants::cubic_spline).
+inline bool wcsph_cubic_spline(const Scene& scene) {
+  return scene.solver == Solver::Wcsph && scene.kernel == KernelPair::CubicSpline;
+}
 
 // Surface tension sigma [N/m] as cohesion between particles of one fluid (forces.h), with the cohesion kernel
 // of Akinci, Akinci & Teschner 2013 (eq. 2, kernels.h: C(r) = 32 / (pi h^3) c(r / h)) as a pair force

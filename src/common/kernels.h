@@ -121,18 +121,38 @@ SPH_HD inline float cubic_spline(const KernelCoeffs& k, float r) {
   return k.cubic * 2.0f * d * d * d;
 }
 
+// dW/dq of the cubic spline (q = r/h < 1), shared by its gradient forms below.
+SPH_HD inline float cubic_spline_dwdq(const KernelCoeffs& k, float q) {
+  if (q <= 0.5f) return k.cubic * (18.0f * q * q - 12.0f * q);
+  const float d = 1.0f - q;
+  return -6.0f * k.cubic * d * d;
+}
+
 // grad of the cubic spline, returned as fac (grad W = fac * r_ab). r must be > 0.
 SPH_HD inline float cubic_spline_grad_fac(const KernelCoeffs& k, float r) {
   const float q = r / k.h;
   if (q >= 1.0f) return 0.0f;
-  float dwdq;
-  if (q <= 0.5f) {
-    dwdq = k.cubic * (18.0f * q * q - 12.0f * q);
-  } else {
-    const float d = 1.0f - q;
-    dwdq = -6.0f * k.cubic * d * d;
-  }
-  return dwdq / (k.h * r);
+  return cubic_spline_dwdq(k, q) / (k.h * r);
+}
+
+// dW/dr of the cubic spline, as spiky_dwdr: the force loop multiplies by the 1/r it already has.
+SPH_HD inline float cubic_spline_dwdr(const KernelCoeffs& k, float r) {
+  const float q = r / k.h;
+  if (q >= 1.0f) return 0.0f;
+  return cubic_spline_dwdq(k, q) / k.h;
+}
+
+// WCSPH's kernel pair (scene key sph.kernel, SimConstants::cubic_spline): Poly6 for the density and Spiky for
+// every gradient [Mueller 2003] (thesis eqs. 2.44, 2.45, the default), or the cubic spline for both
+// [Monaghan 1992; Becker & Teschner 2007], the kernel DFSPH always uses ([BK15]). One kernel for the density
+// and its gradient is what holds a drop's pressure at Laplace's 2 sigma / R (+4% against Poly6 with Spiky's
+// +29%, docs/results.md): with two, the summed density and the pressure force disagree on how much the
+// surface's missing neighbours weigh.
+SPH_HD inline float density_kernel(const KernelCoeffs& k, bool cubic, float r2) {
+  return cubic ? cubic_spline(k, sqrtf(r2)) : poly6(k, r2);
+}
+SPH_HD inline float gradient_dwdr(const KernelCoeffs& k, bool cubic, float r) {
+  return cubic ? cubic_spline_dwdr(k, r) : spiky_dwdr(k, r);
 }
 
 // Akinci, Akinci & Teschner 2013 eq. 2, the cohesion kernel, support h: C(r) = 32 / (pi h^3) c(r / h) with

@@ -29,6 +29,9 @@ enum class Solver : int32_t { Wcsph, Dfsph, Pbf };
 // Surface tension (sph.surface_tension): cohesion between a fluid's particles ([AKT13] kernel calibrated from
 // sigma, forces.h) or the continuum surface force on its surface band (surface_tension_csf.h).
 enum class SurfaceTensionModel : int32_t { Cohesion, Csf };
+// WCSPH's kernels (sph.kernel; kernels.h, density_kernel): Poly6 for the density with Spiky's gradient
+// [Mueller 2003] (thesis eqs. 2.44, 2.45), or the cubic spline for both [Monaghan 1992; BT07].
+enum class KernelPair : int32_t { Poly6Spiky, CubicSpline };
 
 // DFSPH's solver settings (scene block "dfsph"). Tolerances are fractions of the rest density: the density
 // solver stops when the mean compression (rho* - rho0) / rho0 is at most density_tolerance ([BK15] eta, 0.01%),
@@ -180,6 +183,10 @@ struct SimConstants {
   Integrator integrator;
   int32_t clamp_negative_pressure;  // 1: P = max(P, 0) (no tensile pull at a free surface)
   int32_t mirror_walls;             // 1: neighbours near walls act also as their mirror images (mirror_walls.h)
+  // 1: WCSPH with sph.kernel = cubic_spline: its density (summation and continuity), pressure, viscosity and
+  // XSPH terms use the cubic spline in place of Poly6 and Spiky (kernels.h, density_kernel, gradient_dwdr).
+  // 0 under DFSPH and PBF, whose own sums have their own kernels (dfsph.h, pbf.h).
+  int32_t cubic_spline;
   // 1: several fluids of different particle mass, density and pressure force in the number-density form of
   // Solenthaler & Pajarola 2008 (thesis 3.4.3, eqs. 3.5-3.6; density.h, forces.h). Set only where the
   // scene asks for it (sph.multiphase) and the fluids' masses differ: with equal masses the two forms are
@@ -218,5 +225,10 @@ struct SimConstants {
   Shape shapes[kMaxShapes];
   GridGeometry grid;
 };
+
+// Whether the run's summed density uses the cubic spline: DFSPH always ([BK15], dfsph.h), WCSPH where
+// sph.kernel = cubic_spline; else Poly6. The particles' mass, the boundary particles' volumes and the
+// interface tension's colours are taken with the same kernel, so that a lattice reads rho0.
+SPH_HD inline bool density_cubic_spline(const SimConstants& c) { return c.solver == Solver::Dfsph || c.cubic_spline != 0; }
 
 }  // namespace sph

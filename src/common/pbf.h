@@ -167,7 +167,7 @@ SPH_HD inline Vec3 pbf_xsph(const SimConstants& c, const GridView& grid, const P
   Vec3 dv{0.0f, 0.0f, 0.0f};
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3, float r2) {
     if (r2 <= 0.0f) return;
-    dv += xsph_pair_weight(k, 1.0f, c.fluids[p.fluid[j]].mass, r2, rho_i, p.density[j]) * (vel[j] - vi);
+    dv += xsph_pair_weight(k, false, 1.0f, c.fluids[p.fluid[j]].mass, r2, rho_i, p.density[j]) * (vel[j] - vi);
   });
   return params.xsph_c * dv;
 }

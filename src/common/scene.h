@@ -178,11 +178,16 @@ struct Scene {
   // - mirror walls: penalty walls let a resting column sink 30% in 1 s (mirror_walls.h); mirror walls keep
   //   it within 1% (hydrostatic_tank's alpha 0.2; 1.3% with alpha 0.05, none of it from the walls), and
   //   their ghosts never pull (mirror_walls.h, push_only).
-  // Kernels: Poly6 density, Spiky pressure gradient, the only pair the solver has; it is not conservative
-  // (the pressure force is no energy's gradient), which is why some dissipation is part of the default.
+  // Kernels (sph.kernel): Poly6 density with Spiky's pressure gradient, the thesis's pair and the default;
+  // it is not conservative (the pressure force is no energy's gradient), which is why some dissipation is
+  // part of the default. "cubic_spline" takes the cubic spline for both [BT07], as DFSPH always does: it
+  // holds a drop's pressure at Laplace's value, and the 16k dam break's surge front halves its error against
+  // the experiment, where the column's height moves farther from it (docs/results.md).
   DensityMethod density = DensityMethod::Summation;
   EquationOfState eos = EquationOfState::Tait;
   PressureForm pressure_form = PressureForm::MonaghanSymmetric;
+  KernelPair kernel = KernelPair::Poly6Spiky;
+  bool kernel_set = false;  // sph.kernel given: said to be ignored under DFSPH and PBF (their own kernels)
   ViscosityModel viscosity = ViscosityModel::Morris;
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)

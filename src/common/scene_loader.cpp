@@ -423,14 +423,17 @@ Scene read_scene(const json& root, const std::string& source) {
 
   if (r.has("sph")) {
     ObjectReader sr(r.raw("sph"), source, "sph");
-    sr.allow({"density", "equation_of_state", "pressure_force", "viscosity", "negative_pressure", "walls", "multiphase",
-              "surface_tension"});
+    sr.allow({"density", "equation_of_state", "pressure_force", "kernel", "viscosity", "negative_pressure", "walls",
+              "multiphase", "surface_tension"});
     s.density = sr.choice<DensityMethod>("density", s.density,
                                          {{"summation", DensityMethod::Summation}, {"continuity", DensityMethod::Continuity}});
     s.eos = sr.choice<EquationOfState>("equation_of_state", s.eos,
                                        {{"tait", EquationOfState::Tait}, {"ideal", EquationOfState::Ideal}});
     s.pressure_form = sr.choice<PressureForm>(
         "pressure_force", s.pressure_form, {{"monaghan", PressureForm::MonaghanSymmetric}, {"mueller", PressureForm::Mueller}});
+    s.kernel_set = sr.has("kernel");
+    s.kernel = sr.choice<KernelPair>("kernel", s.kernel,
+                                     {{"poly6_spiky", KernelPair::Poly6Spiky}, {"cubic_spline", KernelPair::CubicSpline}});
     s.viscosity = sr.choice<ViscosityModel>("viscosity", s.viscosity,
                                             {{"none", ViscosityModel::None},
                                              {"mueller", ViscosityModel::Mueller},

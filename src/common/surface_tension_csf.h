@@ -48,7 +48,7 @@
 // with sigma_a + sigma_b. So each particle takes its share s of the surface it stands at that is the other
 // fluid's rather than the gas's, from the colour values c = sum_j V_j W_ij over its own fluid (itself
 // included) and over the other: s = c_other / (1 - c_own), within [0, 1] (csf_interface_share). W is the
-// solver's density kernel (DFSPH's cubic spline, WCSPH's Poly6), whose sum over both fluids the pressure
+// solver's density kernel (DFSPH's cubic spline, WCSPH's Poly6 or sph.kernel's), whose sum over both fluids the pressure
 // holds at 1. The force takes the tension (1 - s) sigma + s sigma_ab (csf_interface_acceleration), the
 // interface's part only where the interface is convex seen from the particle's fluid (curvature > 0), so it
 // points into the particle's own fluid. Walls, which the colours do not count, read as gas.
@@ -266,10 +266,10 @@ SPH_HD inline float csf_interface_share(const SimConstants& c, const GridView& g
   const uint8_t fluid = p.fluid[i];
   const float rho0 = c.fluids[fluid].rest_density;
   // The solver's density kernel, with which its pressure holds the sum of both colours at 1 across the interface.
-  const bool cubic = c.solver == Solver::Dfsph;
+  const bool cubic = density_cubic_spline(c);
   float own = 0.0f, other = 0.0f;
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3, float r2) {
-    const float w = cubic ? cubic_spline(k, sqrtf(r2)) : poly6(k, r2);
+    const float w = density_kernel(k, cubic, r2);
     if (p.fluid[j] == fluid) own += p.pos_mass[j].w / rho0 * w;
     else other += p.pos_mass[j].w / c.fluids[p.fluid[j]].rest_density * w;
   });

@@ -33,10 +33,11 @@ constexpr double kViscousStabilityBound = 2.0;
 // The pair weight w_b of the viscosity model for a neighbour at distance r, without the factor
 // mu m / (rho_a rho_b) (Mueller) or mu m / (rho_a rho_b) with mu_a = mu_b = mu (Morris): the same
 // expressions as pressure_viscosity_pair in forces.h.
-inline double viscous_pair_kernel(ViscosityModel model, const KernelCoeffs& k, double r) {
+// cubic: SimConstants::cubic_spline (the cubic spline's dW/dr in place of Spiky's).
+inline double viscous_pair_kernel(ViscosityModel model, const KernelCoeffs& k, bool cubic, double r) {
   if (model == ViscosityModel::Mueller) return viscosity_laplacian(k, float(r));
   const double r2 = r * r;
-  return 2.0 * -double(spiky_dwdr(k, float(r))) / r * r2 / (r2 + double(kPairEps2) * k.h2);
+  return 2.0 * -double(gradient_dwdr(k, cubic, float(r))) / r * r2 / (r2 + double(kPairEps2) * k.h2);
 }
 
 // A site's neighbours on the cubic lattice of unit spacing within h_over_d: the offset and a pair weight.
@@ -83,10 +84,10 @@ inline double lattice_phase_factor(const double k[3], const LatticeNeighbour& q)
 
 // max over k of sum_b K(r_b) (1 - cos k.x_b) over the cubic lattice of unit spacing, K the pair kernel of
 // support h_over_d [units of 1/d^5].
-inline double lattice_viscous_symbol(ViscosityModel model, double h_over_d) {
+inline double lattice_viscous_symbol(ViscosityModel model, bool cubic, double h_over_d) {
   const KernelCoeffs k = make_kernel_coeffs(h_over_d);
   const std::vector<LatticeNeighbour> nb =
-      lattice_neighbours(h_over_d, [&](double r) { return viscous_pair_kernel(model, k, r); });
+      lattice_neighbours(h_over_d, [&](double r) { return viscous_pair_kernel(model, k, cubic, r); });
   return max_over_brillouin_zone([&](const double kv[3]) {
     double sum = 0.0;
     for (const LatticeNeighbour& q : nb) sum += q.w * lattice_phase_factor(kv, q);
@@ -96,12 +97,12 @@ inline double lattice_viscous_symbol(ViscosityModel model, double h_over_d) {
 
 // lambda_max [1/s] of the scene's viscosity (0 for none or artificial viscosity, which the sound limit
 // covers): particles of fluid a on the lattice of spacing d [m] at their lattice density
-// rho_a = m_a lattice_density / d^3 (lattice_density: the Poly6 lattice sum of guided_creation.h), support
+// rho_a = m_a lattice_density / d^3 (lattice_density: the density kernel's lattice sum, guided_creation.h), support
 // h [m]. With w_b = mu m K(r_b / d) / (d^5 rho^2) this is lambda_a = mu_a d S / (m_a lattice_density^2),
 // S the unit-lattice symbol; Morris pairs of different fluids use (mu_a + mu_max) / 2.
 inline double viscous_rate(const SimConstants& c, double spacing, double h, double lattice_density) {
   if (c.viscosity != ViscosityModel::Mueller && c.viscosity != ViscosityModel::Morris) return 0.0;
-  const double symbol = lattice_viscous_symbol(c.viscosity, h / spacing);
+  const double symbol = lattice_viscous_symbol(c.viscosity, c.cubic_spline != 0, h / spacing);
   double mu_max = 0.0;
   for (int32_t f = 0; f < c.num_fluids; ++f) mu_max = std::max(mu_max, double(c.fluids[f].viscosity));
   double rate = 0.0;
@@ -132,18 +133,18 @@ inline double largest_symmetric_eigenvalue(const double m[3][3]) {
 // Monaghan's artificial viscosity (forces.h, artificial_viscosity_pair), taken on every pair as if all
 // approached (the term acts only on approaching pairs, so this bounds it from above): with it alone
 //   dv_a/dt = -sum_b K_ab xhat_ab xhat_ab^T (v_a - v_b),
-//   K_ab = alpha_ab cbar_ab h (m_b / rho_ab) r |dW/dr| / (r^2 + eps^2)   (Spiky dW/dr),
+//   K_ab = alpha_ab cbar_ab h (m_b / rho_ab) r |dW/dr| / (r^2 + eps^2)   (Spiky dW/dr, or the cubic spline's),
 // a graph Laplacian whose weights are 3 x 3 projections. On the unit cubic lattice its symbol at wave vector
 // k is the matrix sum_b K_u(r_b) xhat_b xhat_b^T (1 - cos k.x_b), K_u = H r |dW_u/dr| / (r^2 + eps^2 H^2),
 // H = h / d. This returns its largest eigenvalue over the Brillouin zone, sampled as lattice_viscous_symbol
 // samples it [units of 1/d^4]. Measured against runs: DFSPH's resting column (hydrostatic_tank.json,
 // alpha = 0.2, c0 = 15 m/s) blew up at steps of 2.6 ms, 2.1 times 2 / lambda_max, and ran at alpha = 0.1
 // (docs/results.md).
-inline double lattice_artificial_symbol(double h_over_d) {
+inline double lattice_artificial_symbol(bool cubic, double h_over_d) {
   const KernelCoeffs k = make_kernel_coeffs(h_over_d);
   // K_u / r^2: the projection's x x^T carries r^2.
   const std::vector<LatticeNeighbour> nb = lattice_neighbours(h_over_d, [&](double r) {
-    return h_over_d * r * -double(spiky_dwdr(k, float(r))) / (r * r + double(kPairEps2) * k.h2) / (r * r);
+    return h_over_d * r * -double(gradient_dwdr(k, cubic, float(r))) / (r * r + double(kPairEps2) * k.h2) / (r * r);
   });
   return max_over_brillouin_zone([&](const double kv[3]) {
     double m[3][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
@@ -158,12 +159,12 @@ inline double lattice_artificial_symbol(double h_over_d) {
 
 // lambda_max [1/s] of the artificial viscosity (0 where no fluid has one) for particles at their lattice
 // density rho_a = m_a lattice_density / d^3 (as viscous_rate): lambda = S alpha_ab cbar_ab (2 m_b / (m_a +
-// m_b)) / (lattice_density d), the largest over pairs of fluids, S = lattice_artificial_symbol(h / d).
+// m_b)) / (lattice_density d), the largest over pairs of fluids, S = lattice_artificial_symbol(cubic, h / d).
 // WCSPH's sound-speed step keeps below it (2 / lambda_max is 4.8 times 0.4 h / c0 at alpha = 0.2, h = 1.97
 // d, the hydrostatic tank); DFSPH, whose steps have no sound limit, sub-cycles the viscosity instead (viscous_substeps).
 inline double artificial_viscous_rate(const SimConstants& c, double spacing, double h, double lattice_density) {
   if (!c.artificial_enabled) return 0.0;
-  const double symbol = lattice_artificial_symbol(h / spacing);
+  const double symbol = lattice_artificial_symbol(c.cubic_spline != 0, h / spacing);
   double rate = 0.0;
   for (int32_t a = 0; a < c.num_fluids; ++a)
     for (int32_t b = 0; b < c.num_fluids; ++b) {
