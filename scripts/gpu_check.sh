@@ -226,6 +226,8 @@ run() {
     step "frames host = cuda: two layers (ratio 10), DFSPH" 60 frames_match layers_dfsph two_layers.json --time 0.05 --frames-every 0.01 \
          --set solver=dfsph
     step "frames host = cuda: drop with surface tension" 60 frames_match drop_sigma drop_oscillation.json --time 0.05 --frames-every 0.01
+    step "frames host = cuda: drop under WCSPH, cubic spline kernel" 60 frames_match drop_cubic drop_oscillation.json --time 0.05 \
+         --frames-every 0.01 --set solver=wcsph --set sph.kernel=cubic_spline
     step "frames host = cuda: jelly springs and water" 60 frames_match jelly viscoelastic.json --time 0.15 --frames-every 0.03 \
          --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02
     step "frames host = cuda: jelly springs under DFSPH" 60 frames_match jelly_dfsph viscoelastic.json --time 0.15 --frames-every 0.03 \
@@ -249,7 +251,7 @@ run() {
   else
     local s
     for s in "device tests, cuda, bitwise (--fmad=false)" "device tests, cuda, default build (rounding reach)" \
-             "frames host = cuda (16 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
+             "frames host = cuda (17 scenes)" "compute-sanitizer memcheck (20 steps)" "sph_bench cuda: dam break 16k, 100k, 1M, 4M" \
              "interop probe: cuda writes GL buffers (EGL)"; do
       skip "$s" "no GPU"
     done

@@ -227,8 +227,11 @@ struct SimConstants {
 };
 
 // Whether the run's summed density uses the cubic spline: DFSPH always ([BK15], dfsph.h), WCSPH where
-// sph.kernel = cubic_spline; else Poly6. The particles' mass, the boundary particles' volumes and the
-// interface tension's colours are taken with the same kernel, so that a lattice reads rho0.
+// sph.kernel = cubic_spline; else Poly6. The interface tension's colours take the same kernel. The mass and
+// the boundary particles' volumes do under WCSPH (lattice_density_factor), not under DFSPH, whose lattice
+// therefore starts 0.78% below rho0: calibrated with its own kernel, its resting column stayed 1 mm higher
+// and calmer, but a cube under the continuum surface force shed 91 of 1,728 particles as it rounded
+// (docs/results.md, "DFSPH's mass").
 SPH_HD inline bool density_cubic_spline(const SimConstants& c) { return c.solver == Solver::Dfsph || c.cubic_spline != 0; }
 
 }  // namespace sph
