@@ -172,12 +172,17 @@ TEST_CASE("device models: viscoelastic springs under DFSPH", "[device][models][v
 
 TEST_CASE("device models: WCSPH with the cubic spline kernel, summed and continuity density", "[device][models]") {
   // sph.kernel = cubic_spline (kernels.h, density_kernel, gradient_dwdr): density, pressure, both viscosities,
-  // against mirror walls' ghosts and against boundary particles.
+  // XSPH, against mirror walls' ghosts and against boundary particles.
   for (const auto& [density, walls] : std::vector<std::pair<std::string, std::string>>{{"summation", "mirror"}, {"continuity", "particles"}}) {
     INFO("sph.density = " << density << ", sph.walls = " << walls);
     const sph::Scene scene = scene_file("dam_break.json", {"resolution.particles_across=10", "sph.kernel=cubic_spline",
-                                                           "sph.density=" + density, "sph.walls=" + walls, "sph.viscosity=morris"});
-    check_case(scene, {{"the cubic spline (to Poly6 and Spiky)", [](sph::SimConstants& c) { c.cubic_spline = 0; }}});
+                                                           "sph.density=" + density, "sph.walls=" + walls, "sph.viscosity=morris",
+                                                           "fluids.0.xsph=0.1"});
+    check_case(scene, {{"the cubic spline (to Poly6 and Spiky)", [](sph::SimConstants& c) { c.cubic_spline = 0; }},
+                       {"XSPH", [](sph::SimConstants& c) {
+                          c.xsph_enabled = 0;
+                          for (auto& f : c.fluids) f.xsph = 0.0f;
+                        }}});
   }
 }
 

@@ -171,7 +171,7 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
             << st.constants.grid.nx << " x " << st.constants.grid.ny << " x " << st.constants.grid.nz << " cells\n"
             << "solver: " << solver_name(scene.solver)
             << (scene.solver == Solver::Wcsph ? std::string(", integrator: ") + integrator_name(scene.integrator) +
-                                                    (st.constants.cubic_spline ? ", kernel: cubic spline" : ", kernels: poly6 and spiky")
+                                                    (st.constants.cubic_spline ? ", sph.kernel: cubic_spline" : ", sph.kernel: poly6_spiky")
                                               : std::string());
   if (scene.solver == Solver::Dfsph) std::cout << ", chebyshev: " << scene.dfsph.chebyshev;
   if (scene.solver == Solver::Pbf && (st.constants.csf_enabled || st.constants.surface_tension_enabled))

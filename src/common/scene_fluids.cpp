@@ -166,14 +166,15 @@ void check_interface_gas(const Scene& scene, const Setup& s) {
   const double h = s.h;
   const HostNeighbours neighbours(ps, h, [&](std::size_t a) { return ps.age[a] < kRemovedAge; });
   const KernelCoeffs& k = c.kernel;
+  const bool cubic = density_cubic_spline(c);  // the share's kernel (csf_interface_share)
   long meets[kMaxFluids] = {};
   long example[kMaxFluids];
   for (std::size_t a = 0; a < ps.size(); ++a) {
     if (near_walls(c, ps.pos[a]).count > 0) continue;
-    double colour = double(c.fluids[ps.fluid[a]].mass) / c.fluids[ps.fluid[a]].rest_density * poly6(k, 0.0f);  // itself
+    double colour = double(c.fluids[ps.fluid[a]].mass) / c.fluids[ps.fluid[a]].rest_density * density_kernel(k, cubic, 0.0f);  // itself
     neighbours.for_each(a, [&](std::size_t b, Vec3 x) {
       const float r2 = dot(x, x);
-      if (r2 < k.h2) colour += double(c.fluids[ps.fluid[b]].mass) / c.fluids[ps.fluid[b]].rest_density * poly6(k, r2);
+      if (r2 < k.h2) colour += double(c.fluids[ps.fluid[b]].mass) / c.fluids[ps.fluid[b]].rest_density * density_kernel(k, cubic, r2);
     });
     if (1.0 - colour > kGasDeficit && meets[ps.fluid[a]]++ == 0) example[ps.fluid[a]] = long(a);
   }

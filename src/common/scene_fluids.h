@@ -52,7 +52,7 @@ void check_interface_tension(const Scene& scene);
 // there each particle's share (surface_tension_csf.h) takes the interface's tension along its own fluid's
 // rounded outline, and two drops side by side flew apart (docs/results.md). Checked on the start's particles
 // (s.particles, the set-up's constants): a particle meets the gas where more than kGasDeficit of its colour is
-// missing (1 - c_own - c_other, Poly6; 0 inside the start's lattice and at an interface, about 0.2 on a face
+// missing (1 - c_own - c_other, with the share's kernel: params.h, density_cubic_spline; 0 inside the start's lattice and at an interface, about 0.2 on a face
 // of a block and more at its edges) and no container wall or plane is within h (walls read as missing
 // colour). SceneError naming interface_tension.N otherwise. A drop that reaches the free surface later (a rising
 // drop) is not caught.
