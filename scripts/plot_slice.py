@@ -3,8 +3,9 @@
 centre, coloured by fluid and by pressure, and the pressure against the distance from the centre of one
 fluid (Laplace's jumps of a drop, or of a drop within a drop, read off as steps).
 
-usage: scripts/plot_slice.py OUT_DIR --times 0 1 --out picture.png [--spacing 0.004] [--centre-fluid 0]
-       [--laplace PA ...]   (horizontal lines at these pressures, for comparison)
+usage: scripts/plot_slice.py OUT_DIR [OUT_DIR ...] --times 0 1 --out picture.png [--spacing 0.004]
+       [--centre-fluid 0] [--laplace PA ...] [--labels NAME ...]
+       (a row per folder and time; --laplace: horizontal lines at these pressures, for comparison)
 Needs Debian's python3-matplotlib (apt-get install python3-matplotlib).
 """
 import argparse
@@ -25,23 +26,29 @@ def nearest_frame(paths, t):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("out_dir")
+    ap.add_argument("out_dirs", nargs="+", metavar="OUT_DIR")
     ap.add_argument("--times", type=float, nargs="+", required=True, help="simulated times to show (nearest frame)")
     ap.add_argument("--out", required=True, help="PNG to write")
     ap.add_argument("--spacing", type=float, default=0.004, help="particle spacing [m]: the slice's thickness")
     ap.add_argument("--centre-fluid", type=int, default=0, help="the fluid whose centre the profile is taken from")
     ap.add_argument("--laplace", type=float, nargs="*", default=[], help="pressures [Pa] drawn as dashed lines")
+    ap.add_argument("--labels", nargs="*", default=[], help="a name per OUT_DIR for the rows' titles")
     args = ap.parse_args()
+    if args.labels and len(args.labels) != len(args.out_dirs):
+        sys.exit(f"--labels: {len(args.labels)} names for {len(args.out_dirs)} folders")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    paths = sorted(glob.glob(os.path.join(args.out_dir, "frame_*.ply")))
-    if not paths:
-        sys.exit(f"{args.out_dir}: no frame_*.ply files (run sph_run with --out {args.out_dir} first)")
-    fig, axes = plt.subplots(len(args.times), 3, figsize=(13, 4.2 * len(args.times)), squeeze=False)
+    rows = []
+    for k, out_dir in enumerate(args.out_dirs):
+        paths = sorted(glob.glob(os.path.join(out_dir, "frame_*.ply")))
+        if not paths:
+            sys.exit(f"{out_dir}: no frame_*.ply files (run sph_run with --out {out_dir} first)")
+        rows += [(paths, args.labels[k] + ", " if args.labels else "", t) for t in args.times]
+    fig, axes = plt.subplots(len(rows), 3, figsize=(13, 4.2 * len(rows)), squeeze=False)
     colours = np.array(["tab:orange", "tab:blue", "tab:green", "tab:red", "tab:purple", "tab:brown", "tab:pink", "tab:gray"])
-    for row, t in zip(axes, args.times):
+    for row, (paths, label, t) in zip(axes, rows):
         time, a = read_ply(nearest_frame(paths, t))
         p = a["p"].astype(float)
         fluid = a["fluid"].astype(int)
@@ -49,7 +56,7 @@ def main():
         centre = p[mine].mean(axis=0) if mine.any() else p.mean(axis=0)
         cut = np.abs(p[:, 2] - centre[2]) < 0.5 * args.spacing
         row[0].scatter(p[cut, 0], p[cut, 1], s=6, c=colours[fluid[cut] % len(colours)])
-        row[0].set_title(f"t = {time:.2f} s: fluids, slice z = {round(float(centre[2]), 3) + 0.0:.3f} m")
+        row[0].set_title(f"{label}t = {time:.2f} s: fluids, slice z = {round(float(centre[2]), 3) + 0.0:.3f} m")
         sc = row[1].scatter(p[cut, 0], p[cut, 1], s=6, c=a["pr"][cut], cmap="viridis")
         fig.colorbar(sc, ax=row[1], label="pressure [Pa]")
         row[1].set_title("pressure")
