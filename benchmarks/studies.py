@@ -189,7 +189,9 @@ def accuracy_cost(args, out):
 # step, the CFL step for DFSPH; a number: that fixed step).
 # dfsph06: DFSPH at the CFL factor 0.6 instead of [BK15]'s 0.4 (its fixed-step stability is dfsph's, so it is
 # left out of the bisection).
-SOLVERS = {"wcsph": ([], "adaptive"), "dfsph": (["solver=dfsph"], "adaptive"),
+# wcsph_cubic: WCSPH with the cubic spline for density and gradients (sph.kernel) instead of Poly6 and Spiky.
+SOLVERS = {"wcsph": ([], "adaptive"), "wcsph_cubic": (["sph.kernel=cubic_spline"], "adaptive"),
+           "dfsph": (["solver=dfsph"], "adaptive"),
            "dfsph06": (["solver=dfsph", "time_step.cfl_velocity=0.6", "time_step.max=3e-3"], "adaptive"),
            "pbf": (["solver=pbf"], "4e-3"), "pbf8": (["solver=pbf", "pbf.iterations=8"], "4e-3")}
 
@@ -265,10 +267,10 @@ def pareto(points):
 
 def solver_chart(plt, out, rows):
     def label(solver):
-        names = {"pbf8": "PBF, 8 it.", "pbf": "PBF, 4 it.", "dfsph06": "DFSPH, CFL 0.6"}
+        names = {"pbf8": "PBF, 8 it.", "pbf": "PBF, 4 it.", "dfsph06": "DFSPH, CFL 0.6", "wcsph_cubic": "WCSPH, cubic"}
         return names.get(solver, solver.upper())
 
-    colours = {"wcsph": "tab:blue", "dfsph": "tab:red", "dfsph06": "tab:purple", "pbf": "tab:green", "pbf8": "tab:olive"}
+    colours = {"wcsph": "tab:blue", "wcsph_cubic": "tab:cyan", "dfsph": "tab:red", "dfsph06": "tab:purple", "pbf": "tab:green", "pbf8": "tab:olive"}
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     stab = [r for r in rows if r["study"] == "stability"]
     axes[0].bar([label(r["solver"]) for r in stab], [r["dt"] * 1e3 for r in stab],
