@@ -30,12 +30,9 @@ double smoothing_length(double spacing, double neighbours) {
 }
 
 double lattice_density_factor(double d, double h, bool cubic_spline) {
-  if (cubic_spline) {  // kernels.h, cubic_spline, in double
-    const double c = 8.0 / (kPiDouble * h * h * h);
-    return lattice_sum(d, h, [&](double r2) {
-             const double q = std::sqrt(r2) / h;
-             return q <= 0.5 ? c * (6.0 * q * q * (q - 1.0) + 1.0) : c * 2.0 * std::pow(1.0 - q, 3);
-           }) * d * d * d;
+  if (cubic_spline) {  // the kernel itself (kernels.h), summed in double
+    const KernelCoeffs k = make_kernel_coeffs(h);
+    return lattice_sum(d, h, [&](double r2) { return double(sph::cubic_spline(k, float(std::sqrt(r2)))); }) * d * d * d;
   }
   const double c = 315.0 / (64.0 * kPiDouble * std::pow(h, 9));
   return lattice_sum(d, h, [&](double r2) { return c * std::pow(h * h - r2, 3); }) * d * d * d;
