@@ -72,8 +72,9 @@ TEST_CASE("drops relax to the contact angles asked under the continuum surface f
     // A model blind to the angle would leave all three alike (the cube reads 122 degrees; a plain mirror
     // wall gives 90): 8 degrees tells 60, 90 and 120 apart.
     CHECK(std::fabs(mean[f] - asked[f]) < 8.0);
-    // Measured: 60 degrees sheds 28 particles as it spreads (2.8%), 90 and 120 none.
-    CHECK(fewest_in_body[f] >= 950);
+    // Measured: 60 degrees shed 28 particles as it spread (2.8%), 90 and 120 none; since the curvature's limit
+    // (surface_tension_csf.h, csf_limited_curvature, 2026-12-01) none of the three sheds one.
+    CHECK(fewest_in_body[f] >= 980);
   }
   CHECK(mean[0] < mean[1]);
   CHECK(mean[1] < mean[2]);

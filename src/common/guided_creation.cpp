@@ -357,6 +357,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   c.eos = scene.eos;
   c.pressure_form = scene.pressure_form;
   c.cubic_spline = wcsph_cubic_spline(scene) ? 1 : 0;
+  c.csf_curvature_spread = scene.csf_curvature_limit ? kCsfCurvatureSpread : -1.0f;
   c.viscosity = scene.viscosity;
   c.integrator = scene.integrator;
   c.clamp_negative_pressure = scene.clamp_negative_pressure;

@@ -187,6 +187,10 @@ struct SimConstants {
   // XSPH terms use the cubic spline in place of Poly6 and Spiky (kernels.h, density_kernel, gradient_dwdr).
   // 0 under DFSPH and PBF, whose own sums have their own kernels (dfsph.h, pbf.h).
   int32_t cubic_spline;
+  // The continuum surface force's limit on a particle's curvature, relative to its neighbours' mean
+  // (surface_tension_csf.h, csf_limited_curvature): kCsfCurvatureSpread, or -1 for none (Scene's
+  // csf_curvature_limit, which only tests turn off).
+  float csf_curvature_spread;
   // 1: several fluids of different particle mass, density and pressure force in the number-density form of
   // Solenthaler & Pajarola 2008 (thesis 3.4.3, eqs. 3.5-3.6; density.h, forces.h). Set only where the
   // scene asks for it (sph.multiphase) and the fluids' masses differ: with equal masses the two forms are

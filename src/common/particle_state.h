@@ -38,14 +38,18 @@ struct Spawn {
 
 // The incompressible solvers' per-particle unknowns (src/solvers/dfsph.h, pbf.h): scratch like the derived
 // fields, sized only while such a solver runs (fit_derived), written before every use within a step.
-// DFSPH: alpha [m^5/kg], kappa [m^2/s^2], solver_error (each particle's share of the error the solver
-// checks) and support (1: enough neighbours for the divergence solve, dfsph_support). PBF: lambda [m^2], solver_error, delta_pos (the position correction [m], then the vorticity
-// confinement's acceleration [m/s^2]) and omega (vorticity [1/s]). The continuum surface force
-// (surface_tension_csf.h), with any solver: surface_normal (the colour gradient n [1/m]) and curvature [1/m]. DFSPH's warm start, which must survive
-// the reorder, is kept in the particle fields pressure and near_pressure (particle_view.h).
+// - DFSPH: alpha [m^5/kg], kappa [m^2/s^2], solver_error (each particle's share of the error the solver
+//   checks) and support (1: enough neighbours for the divergence solve, dfsph_support).
+// - PBF: lambda [m^2], solver_error, delta_pos (the position correction [m], then the vorticity
+//   confinement's acceleration [m/s^2]) and omega (vorticity [1/s]).
+// - The continuum surface force (surface_tension_csf.h), with any solver: surface_normal (the colour
+//   gradient n [1/m]), curvature_own (each particle's own estimate [1/m]) and curvature (that estimate
+//   limited by the neighbours', the one the force uses [1/m]).
+// DFSPH's warm start, which must survive the reorder, is kept in the particle fields pressure and
+// near_pressure (particle_view.h).
 #define SPH_SOLVER_FIELDS(X) \
   X(float, alpha) X(float, kappa) X(float, lambda) X(float, solver_error) X(Vec3, delta_pos) X(Vec3, omega) \
-  X(int32_t, support) X(Vec3, surface_normal) X(float, curvature)
+  X(int32_t, support) X(Vec3, surface_normal) X(float, curvature_own) X(float, curvature)
 
 // Sizes the derived fields of `arrays` (ParticleState here, the device arrays in src/cuda/device_arrays.h:
 // any type with the fields of these lists as resizable vectors) to n particles, and the solver fields to n
@@ -122,7 +126,8 @@ struct ParticleState {
                         id.data(),            pos_start.data(),     pos_mass.data(), vel_inv_rho.data(),
                         pressure_rho2.data(), near_pressure_rho2.data(), alpha.data(),       kappa.data(),
                         lambda.data(),        solver_error.data(),       delta_pos.data(),   omega.data(),
-                        support.data(),       surface_normal.data(),     curvature.data()};
+                        support.data(),       surface_normal.data(),     curvature_own.data(),
+                        curvature.data()};
   }
 };
 
@@ -136,9 +141,9 @@ struct ParticleState {
 // either.
 constexpr std::size_t kParticleFieldBytes = 6 * sizeof(Vec3) + 5 * sizeof(float) + sizeof(uint8_t) + sizeof(int32_t);
 constexpr std::size_t kDerivedFieldBytes = 2 * sizeof(Vec4) + 2 * sizeof(float);
-// DFSPH, PBF and the continuum surface force add their solver fields, 60 bytes, counted here for every
+// DFSPH, PBF and the continuum surface force add their solver fields, 64 bytes, counted here for every
 // solver (not re-measured).
-constexpr std::size_t kSolverFieldBytes = 5 * sizeof(float) + 3 * sizeof(Vec3) + sizeof(int32_t);
+constexpr std::size_t kSolverFieldBytes = 6 * sizeof(float) + 3 * sizeof(Vec3) + sizeof(int32_t);
 constexpr std::size_t kBytesPerParticle = 8 * kParticleFieldBytes + kDerivedFieldBytes + kSolverFieldBytes;
 
 }  // namespace sph

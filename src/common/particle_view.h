@@ -43,7 +43,10 @@ struct ParticleView {
   Vec3* omega;          // PBF: vorticity [1/s]
   int32_t* support;     // DFSPH: 1 where the neighbourhood is full enough for the divergence solve
   Vec3* surface_normal; // continuum surface force: colour gradient n [1/m] (surface_tension_csf.h)
-  float* curvature;     // continuum surface force: mean curvature kappa [1/m]
+  float* curvature_own;  // continuum surface force: each particle's own estimate of the mean curvature [1/m], or
+                         // kCsfNoCurvature where it has too few neighbours with a normal to make one
+  float* curvature;     // continuum surface force: mean curvature kappa [1/m], curvature_own limited by the
+                        // neighbours' (csf_limited_curvature), the force's
 };
 
 // Whether a step needs the solver fields above: the incompressible solvers and the continuum surface force.

@@ -199,6 +199,9 @@ struct Scene {
   // sph.surface_tension: "cohesion" (forces.h, the default) or "csf" (surface_tension_csf.h): how the fluids'
   // surface_tension acts.
   SurfaceTensionModel surface_tension_model = SurfaceTensionModel::Cohesion;
+  // Not a scene key: false turns the continuum surface force's curvature limit off (surface_tension_csf.h,
+  // csf_limited_curvature), so that a test shows what it prevents.
+  bool csf_curvature_limit = true;
   Integrator integrator = Integrator::ModifiedVelocityVerlet;  // WCSPH's; DFSPH and PBF integrate their own way
   // The pressure solver ("solver") and the settings of the incompressible ones (blocks "dfsph", "pbf";
   // params.h says what each is). DFSPH reads sph.viscosity and sph.walls and the fluids' viscosity and

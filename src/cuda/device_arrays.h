@@ -198,6 +198,7 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(omega.data()),
                         thrust::raw_pointer_cast(support.data()),
                         thrust::raw_pointer_cast(surface_normal.data()),
+                        thrust::raw_pointer_cast(curvature_own.data()),
                         thrust::raw_pointer_cast(curvature.data())};
   }
 };

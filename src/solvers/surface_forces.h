@@ -1,6 +1,7 @@
 // The continuum surface force (src/common/surface_tension_csf.h) as loops of a solver's forces phase, shared
-// by WCSPH and DFSPH: the colour gradient of every particle, then its curvature (which reads its neighbours'
-// gradients), then the force added to the acceleration the forces loop wrote. And the cohesion between two
+// by WCSPH and DFSPH: the colour gradient of every particle, then its own estimate of the curvature (which
+// reads its neighbours' gradients), then that estimate limited by its neighbours' (which reads their
+// estimates), then the force added to the acceleration the forces loop wrote. And the cohesion between two
 // fluids that sets their interface tension (forces.h, interface_cohesion), also after the forces loop.
 #pragma once
 
@@ -35,7 +36,15 @@ struct CsfCurvatureFn {
   C c;
   GridView g;
   ParticleView p;
-  SPH_KERNEL_FN void operator()(int32_t i) const { p.curvature[i] = csf_curvature(*c, g, p, i); }
+  SPH_KERNEL_FN void operator()(int32_t i) const { p.curvature_own[i] = csf_curvature(*c, g, p, i); }
+};
+
+template <class C>
+struct CsfLimitCurvatureFn {
+  C c;
+  GridView g;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const { p.curvature[i] = csf_limited_curvature(*c, g, p, i); }
 };
 
 template <class C>
@@ -84,6 +93,7 @@ void continuum_surface_force(Exec& x) {
   x.for_each(CsfNormalFn<C>{x.constants(), x.grid(), x.particles()});
   if (x.host_constants().csf_contact_enabled) x.for_each(CsfContactNormalFn<C>{x.constants(), x.grid(), x.particles()});
   x.for_each(CsfCurvatureFn<C>{x.constants(), x.grid(), x.particles()});
+  x.for_each(CsfLimitCurvatureFn<C>{x.constants(), x.grid(), x.particles()});
   if (x.host_constants().csf_interface_enabled)
     x.for_each(CsfInterfaceForceFn<C>{x.constants(), x.grid(), x.particles()});
   else
