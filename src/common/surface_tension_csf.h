@@ -274,7 +274,10 @@ SPH_HD inline float csf_curvature(const SimConstants& c, const GridView& grid, c
 // pulled back: none left. A plain average in place of the limit (a Shepard filter, or half the own estimate
 // and half the mean) also kept the drop whole but let the particle-scale roughness that it no longer
 // answers grow, which the estimates read as curvature: the jump across the interface drop rose from 1.12
-// to 1.16 to 1.18 of Laplace's.
+// to 1.16 to 1.18 of Laplace's. A wider bound above (up to 3 times the mean) held the tips a ringing cube
+// draws out of its face centres, which this one lets go (13, 13 and 24 particles at 16, 18 and 22 across
+// under DFSPH; none from 12 to 24 across with it), but WCSPH's Poly6 and Spiky box then rang 12% short of
+// Rayleigh's period (17% with 2 times the mean; 5.6% with this bound, 2.9% before it; its test asks 10%).
 constexpr float kCsfCurvatureSpread = 0.5f;
 SPH_HD inline float csf_limited_curvature(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                           int32_t i) {
