@@ -50,6 +50,16 @@ struct DropRun {
   double inner_pressure = 0.0;  // mean pressure of the particles within equivalent / 2 of the centre [Pa]
 };
 
+// The mean of the particles' positions [m].
+void mean_position(const sph::ParticleState& ps, double c[3]) {
+  c[0] = c[1] = c[2] = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    c[0] += ps.pos[i].x / double(ps.size());
+    c[1] += ps.pos[i].y / double(ps.size());
+    c[2] += ps.pos[i].z / double(ps.size());
+  }
+}
+
 DropRun run_drop(int across, double seconds, std::vector<std::string> sets = {}) {
   sets.push_back("resolution.particles_across=" + std::to_string(across));
   const sph::Scene scene = scene_file("drop_oscillation.json", sets);
@@ -69,12 +79,8 @@ DropRun run_drop(int across, double seconds, std::vector<std::string> sets = {})
     out.ke_max = std::max(out.ke_max, sph::measure(sim.setup().constants, sim.particles()).kinetic_energy);
   }
   const sph::ParticleState& ps = sim.particles();
-  double c[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    c[0] += ps.pos[i].x / double(ps.size());
-    c[1] += ps.pos[i].y / double(ps.size());
-    c[2] += ps.pos[i].z / double(ps.size());
-  }
+  double c[3];
+  mean_position(ps, c);
   double r2 = 0.0;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const double dx = ps.pos[i].x - c[0], dy = ps.pos[i].y - c[1], dz = ps.pos[i].z - c[2];
@@ -157,12 +163,8 @@ long shed_particles(bool curvature_limit, double seconds) {
   const sph::ParticleState& ps = sim.particles();
   const double mass = double(sim.setup().constants.fluids[0].mass) * double(ps.size());
   const double equivalent = std::cbrt(3.0 * mass / (4.0 * kPi * scene.fluids[0].rest_density));
-  double c[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    c[0] += ps.pos[i].x / double(ps.size());
-    c[1] += ps.pos[i].y / double(ps.size());
-    c[2] += ps.pos[i].z / double(ps.size());
-  }
+  double c[3];
+  mean_position(ps, c);
   const double reach = equivalent + 2.0 * sim.setup().spacing;
   long shed = 0;
   for (std::size_t i = 0; i < ps.size(); ++i) {
