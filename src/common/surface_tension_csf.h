@@ -92,7 +92,7 @@ constexpr float kCsfNormalFloor = 0.5f;
 // a curvature of the wrong sign from its two or three neighbours and was thrown off at 5 m/s (measured).
 constexpr int32_t kCsfMinNeighbours = 6;
 // csf_curvature's value for a particle without an estimate of its own (no normal, or too few neighbours
-// with one); csf_smoothed_curvature skips it.
+// with one); csf_limited_curvature skips it.
 constexpr float kCsfNoCurvature = 3.0e38f;
 constexpr float kCsfMaxCurvature = 4.0f;
 
@@ -283,7 +283,7 @@ SPH_HD inline float csf_limited_curvature(const SimConstants& c, const GridView&
                                           int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const Vec3 ni = p.surface_normal[i];
-  if (!(dot(ni, ni) * k.h2 > kCsfNormalFloor * kCsfNormalFloor)) return 0.0f;
+  if (!(sqrtf(dot(ni, ni)) * k.h > kCsfNormalFloor)) return 0.0f;  // no normal, as csf_curvature reads it
   const float own = p.curvature_own[i];
   const float own_or_none = own == kCsfNoCurvature ? 0.0f : own;
   if (c.csf_curvature_spread < 0.0f) return own_or_none;
