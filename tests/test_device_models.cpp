@@ -170,6 +170,15 @@ TEST_CASE("device models: viscoelastic springs under DFSPH", "[device][models][v
                       }}});
 }
 
+TEST_CASE("device models: viscoelastic springs under PBF", "[device][models][viscoelastic][pbf]") {
+  // The springs as PBF's external force at the step's start (solvers/pbf.h, SpringAccelerationFn).
+  const sph::Scene scene = scene_file("viscoelastic.json", {"resolution.particles_across=6", "fluids.0.spring_plasticity=2",
+                                                            "fluids.0.spring_yield=0.02", "solver=pbf"});
+  check_case(scene, {{"springs", [](sph::SimConstants& c) {
+                        for (auto& f : c.fluids) f.spring_stiffness = 0.0f;
+                      }}});
+}
+
 TEST_CASE("device models: WCSPH with the cubic spline kernel, summed and continuity density", "[device][models]") {
   // sph.kernel = cubic_spline (kernels.h, density_kernel, gradient_dwdr): density, pressure, both viscosities,
   // XSPH, against mirror walls' ghosts and against boundary particles.

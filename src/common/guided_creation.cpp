@@ -110,7 +110,7 @@ void check_incompressible_step(const Scene& scene, double spacing) {
   throw SceneError(os.str());
 }
 
-// DFSPH's springs: a fixed step, or a least step, above the springs' own limit (time_step.h,
+// DFSPH's and PBF's springs: a fixed step, or a least step, above the springs' own limit (time_step.h,
 // kSpringStepFraction 2 / spring_rate) would override it, and the jelly blows up (fixed 1 ms under the 20 kPa
 // jelly of scenes/viscoelastic.json: within 14 steps). spring_rate [1/s]: springs.h.
 void check_spring_step(const Scene& scene, double spring_rate) {

@@ -202,11 +202,6 @@ void check_springs(const Scene& scene) {
     const std::string key = fluid_key(i) + ".spring_modulus";
     std::ostringstream os;
     os << scene.source << ": " << key << ": ";
-    if (scene.solver == Solver::Pbf) {
-      os << "springs (a viscoelastic fluid) run with solver \"wcsph\" or \"dfsph\", not \"pbf\" (its constraint "
-            "solve moves particles without forces)";
-      throw SceneError(os.str());
-    }
     if (!scene.initial_state.empty()) {
       os << "springs are made between the particles the emitters create at the start; an initial_state frame holds "
             "no springs (leave one of the two out)";
@@ -218,7 +213,7 @@ void check_springs(const Scene& scene) {
            << " during the run: give the jet a fluid without springs";
         throw SceneError(os.str());
       }
-    // WCSPH's step follows the speed of sound; DFSPH's has a limit of the springs' own (time_step.h).
+    // WCSPH's step follows the speed of sound; DFSPH's and PBF's have a limit of the springs' own (time_step.h).
     const double limit = kElasticWaveLimit * kElasticWaveLimit * f.rest_density * f.speed_of_sound * f.speed_of_sound;
     if (scene.solver == Solver::Wcsph && f.spring_modulus > limit) {
       os << f.spring_modulus << " Pa makes elastic waves (sqrt(G / rho0) = " << std::sqrt(f.spring_modulus / f.rest_density)

@@ -27,11 +27,10 @@ void check_fluid_ratios(const Scene& scene);
 // of c0 = 20 m/s blew up at 7 ms).
 void check_surface_tension(const Scene& scene, double h);
 
-// Springs (springs.h) only where they can be kept: under WCSPH or DFSPH (PBF moves particles by constraints,
-// not forces), on fluids created at the start (not by jets, not from an initial_state frame, which holds no
-// springs), and under WCSPH with an elastic wave speed sqrt(G / rho0) at most kElasticWaveLimit c0, so that
-// the sound speed's time step also resolves the springs (DFSPH's step has a limit of the springs' own,
-// time_step.h). SceneError naming the key otherwise.
+// Springs (springs.h) only where they can be kept: on fluids created at the start (not by jets, not from an
+// initial_state frame, which holds no springs), and under WCSPH with an elastic wave speed sqrt(G / rho0) at
+// most kElasticWaveLimit c0, so that the sound speed's time step also resolves the springs (DFSPH's and PBF's
+// steps have a limit of the springs' own, time_step.h). SceneError naming the key otherwise.
 void check_springs(const Scene& scene);
 
 // A contact angle only where it holds: a fluid with surface_tension > 0 and a solver with surface tension (not

@@ -97,14 +97,17 @@ SPH_HD inline void index_particle(const SpringView& s, const ParticleView& p, in
 }
 
 // Particle i's acceleration from its springs this step [m/s^2], with the plasticity and breaking of its own
-// copies of them (dt [s]). A partner that has left the simulation breaks its spring.
-SPH_HD inline Vec3 spring_acceleration(const SimConstants& c, const SpringView& s, const ParticleView& p, int32_t i,
-                                       float dt) {
+// copies of them (dt [s]), the springs measured between the positions x_of(j) [m] (any callable int32_t ->
+// Vec3: WCSPH and DFSPH read the grid's pos_mass, PBF the step's start, p.pos). A partner that has left the
+// simulation breaks its spring.
+template <class Positions>
+SPH_HD inline Vec3 spring_acceleration_at(const SimConstants& c, const SpringView& s, const ParticleView& p, int32_t i,
+                                          float dt, Positions x_of) {
   Vec3 acc{0.0f, 0.0f, 0.0f};
   const int32_t id = p.id[i];
   const FluidConstants& f = c.fluids[p.fluid[i]];
   if (id < 0 || id >= s.num_ids || f.spring_stiffness == 0.0f) return acc;
-  const Vec3 xi = xyz(p.pos_mass[i]);
+  const Vec3 xi = x_of(i);
   for (int32_t slot = id * s.capacity, end = slot + s.capacity; slot < end; ++slot) {
     const int32_t partner = s.partner[slot];
     if (partner < 0) continue;
@@ -113,7 +116,7 @@ SPH_HD inline Vec3 spring_acceleration(const SimConstants& c, const SpringView& 
       s.partner[slot] = -1;
       continue;
     }
-    const Vec3 xij = xi - xyz(p.pos_mass[j]);
+    const Vec3 xij = xi - x_of(j);
     const float r = sqrtf(dot(xij, xij));
     float rest = s.rest[slot];
     const float tolerated = f.spring_yield * rest;  // Clavet's plasticity (above)
@@ -127,6 +130,12 @@ SPH_HD inline Vec3 spring_acceleration(const SimConstants& c, const SpringView& 
     acc -= (s.stiffness[slot] * (r - rest) / r) * xij;
   }
   return acc;
+}
+
+// spring_acceleration_at with the positions the grid phase wrote (pos_mass): WCSPH's and DFSPH's forces.
+SPH_HD inline Vec3 spring_acceleration(const SimConstants& c, const SpringView& s, const ParticleView& p, int32_t i,
+                                       float dt) {
+  return spring_acceleration_at(c, s, p, i, dt, [&](int32_t j) { return xyz(p.pos_mass[j]); });
 }
 
 }  // namespace sph

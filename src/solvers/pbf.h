@@ -3,7 +3,8 @@
 // (src/solvers/execution.h). The per-particle formulas are src/common/pbf.h's.
 //
 // A step ([MM13] algorithm 1; the order is kPbfPhases in backend.h):
-//   predict:          v += dt a_ext (gravity, the user force); x* = x + dt v, then the scene's shapes
+//   predict:          v += dt a_ext (gravity, the user force, the viscoelastic springs at x); x* = x + dt v,
+//                     then the scene's shapes
 //   build_grid:       the grid on x*, kept through the iterations (the paper finds neighbours once a step)
 //   constraint_solve: iterations of density rho(x*), lambda (eqs. 8-11), Delta p (eq. 14, with s_corr),
 //                     x* += Delta p and the shapes again; a last density for the error and what follows
@@ -24,19 +25,39 @@
 #include "../common/forces.h"
 #include "../common/pbf.h"
 #include "../common/sph_hd.h"
+#include "../common/springs.h"
 #include "reduction.h"
+#include "wcsph.h"
 
 namespace sph {
 namespace pbf {
 
+// The viscoelastic springs' acceleration (springs.h) at the step's start x, into acc for PredictFn; their
+// rest lengths yield over dt. A loop of its own: PredictFn moves the positions the springs measure. Clavet et
+// al. displace particles by the springs before their relaxation as well; here they are an external force, so
+// the step keeps the springs' explicit limit (time_step.h, spring_step_bound), as DFSPH's does.
+template <class C>
+struct SpringAccelerationFn {
+  C c;
+  SpringView s;
+  ParticleView p;
+  float dt;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    const Vec3* x = p.pos;
+    p.acc[i] = p.age[i] < 0.0f ? Vec3{0.0f, 0.0f, 0.0f}
+                               : spring_acceleration_at(*c, s, p, i, dt, [&](int32_t j) { return x[j]; });
+  }
+};
+
 // v += dt a_ext, x* = x + dt v ([MM13] algorithm 1, lines 2-3), then the shapes (boundaries.h) on the
-// segment x -> x*; the acceleration is kept in acc for the driver's diagnostics. Inlet particles (age < 0)
-// move kinematically.
+// segment x -> x*; a_ext is gravity, the user force and, with springs, SpringAccelerationFn's acc. The
+// acceleration is kept in acc for the driver's diagnostics. Inlet particles (age < 0) move kinematically.
 template <class C>
 struct PredictFn {
   C c;
   ParticleView p;
   float dt;
+  bool springs;  // acc holds the springs' acceleration (SpringAccelerationFn)
   SPH_KERNEL_FN void operator()(int32_t i) const {
     const SimConstants& k = *c;
     p.pos_start[i] = p.pos[i];
@@ -46,6 +67,7 @@ struct PredictFn {
       return;
     }
     Vec3 a = k.gravity;
+    if (springs) a += p.acc[i];
     if (k.user_force.strength != 0.0f) a += user_force_acceleration(k, p.pos[i]);
     p.acc[i] = a;
     p.vel[i] += dt * a;
@@ -189,11 +211,17 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
   using C = typename Exec::Constants;
   const PbfConstants& s = x.host_constants().pbf;
   switch (ph) {
-    case Phase::Predict:
-      x.for_each(PredictFn<C>{x.constants(), x.particles(), dt});
+    case Phase::Predict: {
+      const bool springs = x.springs().capacity > 0;
+      if (springs) {  // each particle's place under its id (the last grid build's order), then the springs
+        x.for_each(wcsph::IndexParticleFn{x.springs(), x.particles()});
+        x.for_each(SpringAccelerationFn<C>{x.constants(), x.springs(), x.particles(), dt});
+      }
+      x.for_each(PredictFn<C>{x.constants(), x.particles(), dt, springs});
       if (x.grid().boundary.n > 0)
         x.for_each(BoundaryParticleCollisionFn{x.grid(), x.particles(), x.host_constants().kernel.h2});
       return;
+    }
     case Phase::BuildGrid: x.build_grid(); return;
     case Phase::ConstraintSolve:
       stats.density_iterations = solve(x, dt, stats.density_error, stats.density_capped);
