@@ -144,3 +144,10 @@ TEST_CASE("device solvers: DFSPH with two fluids of density ratio 10 in the numb
   REQUIRE(scene.number_density);
   check_solver_case(scene, 30);
 }
+
+TEST_CASE("device solvers: PBF with two fluids of density ratio 10 in the number-density form", "[device][solvers][multiphase]") {
+  // Mirror walls, the light fluid's corrections weighted by inverse mass (src/common/pbf.h).
+  const sph::Scene scene = scene_file("two_layers.json", {"resolution.particles_across=5", "solver=pbf"});
+  REQUIRE(scene.number_density);
+  check_solver_case(scene, 30);
+}

@@ -5,10 +5,19 @@
 // The paper's text is not among the seeds: its equation numbers below are recalled, to check against it.
 //
 // Kernels as the paper: Poly6 for densities and weights, Spiky for gradients (kernels.h, support h). The
-// density rho_i = sum_j m_j W_poly6 is the existing summation (density.h, density_of with Summation), read
-// from p.density. The paper takes unit masses; here every sum carries m_j, written so that the corrections
-// conserve linear momentum for any masses (sum_i m_i Delta p_i = 0). Wall ghosts (mirror_walls.h) are not
-// included yet: docs/solvers_plan.md.
+// density rho_i = sum_j m_j W_poly6 (pbf_density). The paper takes unit masses; here every sum carries m_j,
+// written so that the corrections conserve linear momentum for any masses (sum_i m_i Delta p_i = 0).
+//
+// Several fluids (SimConstants::number_density, set where the fluids' masses differ; [SP08] as density.h and
+// dfsph.h): every neighbour counts at i's own mass, rho_i = m_i sum_j W_ij, so C_i = rho_i / rho0_i - 1 reads
+// the number density and a light particle beside heavy ones is not read as compressed. The corrections are
+// the mass-weighted projection of position-based dynamics, Delta x_k = (1 / m_k) sum_c lambda^_c grad_k C_c
+// with lambda^_c = -C_c / (sum_k |grad_k C_c|^2 / m_k + epsilon^): a constraint moves the lighter of its
+// particles more, as a pressure accelerates a lighter particle of the same volume more, and sum_k m_k
+// Delta x_k = 0. Written with lambda_c = lambda^_c / m_c, so that with equal masses every expression is the
+// single-fluid one times exact factors of 1: lambda_c = -C_c / (sum_k (m_c / m_k) |grad_k C_c|^2 + epsilon),
+// grad_j C_i = -(m_i / rho0_i) grad W_ij, and i moves by (1 / rho0_i) sum_j (m_i lambda_i + (m_j^2 / m_i)
+// (rho0_i / rho0_j) lambda_j) grad W_ij.
 //
 // Units (SI): grad C [1/m], lambda [m^2], relaxation epsilon [1/m^2], Delta p [m], vorticity [1/s].
 // The paper's k and epsilon carry no units (its scenes fix the length scale); they are read here in units of
@@ -49,7 +58,12 @@ SPH_HD inline void for_each_pbf_ghost(const SimConstants& c, const GridView& gri
   for_each_ghost_of(c, grid, p.pos_mass, neighbour_radius2(c), p.pos, walls, i, f);
 }
 
-// rho_i = sum_j m_j W_poly6(x_i - x_j), the particle itself included, at the positions p.pos (the predicted
+// Neighbour (or wall ghost of) j's mass in particle i's sums: m_j, or m_i in the number-density form (above).
+SPH_HD_ALWAYS_INLINE float pbf_mass(const SimConstants& c, const ParticleView& p, int32_t i, int32_t j) {
+  return c.fluids[p.fluid[c.number_density ? i : j]].mass;
+}
+
+// rho_i = sum_j m_j W_poly6(x_i - x_j) (m_i with several fluids: pbf_mass), the particle itself included, at the positions p.pos (the predicted
 // x* while the solver iterates): the density the constraint reads ([MM13] eq. 2). With mirror walls the
 // neighbours' wall ghosts (mirror_walls.h, for_each_pbf_ghost) add their
 // mass, so a particle at a wall is not read as under-dense. [kg/m^3]
@@ -57,10 +71,10 @@ SPH_HD inline float pbf_density(const SimConstants& c, const GridView& grid, con
   const KernelCoeffs& k = c.kernel;
   float rho = 0.0f;
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3, float r2) {
-    rho += c.fluids[p.fluid[j]].mass * poly6(k, r2);
+    rho += pbf_mass(c, p, i, j) * poly6(k, r2);
   });
   const NearWalls walls = c.mirror_walls ? near_walls(c, p.pos[i]) : NearWalls{};
-  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) { rho += p.pos_mass[j].w * poly6(k, r2); });
+  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) { rho += pbf_mass(c, p, i, j) * poly6(k, r2); });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, p.pos[i], k.h2, [&](int32_t, Vec3, float r2, float volume) { rho += rho0 * volume * poly6(k, r2); });
   return rho;
@@ -83,19 +97,22 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
   float rho = 0.0f;
   Vec3 grad_i{0.0f, 0.0f, 0.0f};  // grad_i C_i [1/m]
   float sum_grad2 = 0.0f;         // sum_j |grad_j C_i|^2 [1/m^2]
+  const float mi = c.fluids[p.fluid[i]].mass;
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
-    const float mj = c.fluids[p.fluid[j]].mass;
+    const float mj = pbf_mass(c, p, i, j);
     rho += mj * poly6(k, r2);
     if (r2 <= 0.0f) return;
     const Vec3 g = (mj / rest_density * spiky_grad_fac(k, sqrtf(r2))) * xij;
     grad_i += g;
-    sum_grad2 += length2(g);
+    // Number density: (m_i / m_j) |grad_j C_i|^2, the mass-weighted projection's (above).
+    sum_grad2 += c.number_density ? length2(g) * (mi / c.fluids[p.fluid[j]].mass) : length2(g);
   });
   const Vec3 xi = p.pos[i];
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    rho += p.pos_mass[j].w * poly6(k, r2);
-    if (r2 > 0.0f) grad_i += (p.pos_mass[j].w / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    const float mj = pbf_mass(c, p, i, j);
+    rho += mj * poly6(k, r2);
+    if (r2 > 0.0f) grad_i += (mj / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
   // Boundary particles [AIA12] like the ghosts: Psi_b = rho0 V_b, solid.
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
@@ -128,16 +145,25 @@ SPH_HD inline float pbf_scorr(const KernelCoeffs& k, const PbfConstants& params,
 
 // [MM13] eq. 14: Delta p_i = (1 / rho0) sum_j m_j (lambda_i + lambda_j + s_corr h^2) grad W_ij (Spiky),
 // lambda from pbf_lambda. The pair (i, j) moves i by m_j X and j by -m_i X for the same X: equal and opposite
-// momentum, sum_i m_i Delta p_i = 0. [m]
+// momentum, sum_i m_i Delta p_i = 0. Several fluids (above): the pair's weight is m_i lambda_i + (m_j^2 / m_i)
+// (rho0_i / rho0_j) lambda_j, and s_corr's m_j 2 rho0_i / (rho0_i + rho0_j), so that m_i Delta p_i of the pair
+// is again antisymmetric. [m]
 SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                            const float* lambda, const PbfConstants& params, int32_t i) {
   const KernelCoeffs& k = c.kernel;
   const float li = lambda[i];
+  const FluidConstants& fi = c.fluids[p.fluid[i]];
   Vec3 dp{0.0f, 0.0f, 0.0f};
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    const float s = li + lambda[j] + pbf_scorr(k, params, r2) * k.h2;
-    dp += (c.fluids[p.fluid[j]].mass * s * spiky_grad_fac(k, sqrtf(r2))) * xij;
+    const FluidConstants& fj = c.fluids[p.fluid[j]];
+    const float scorr = pbf_scorr(k, params, r2) * k.h2;
+    const float weight =
+        c.number_density
+            ? fi.mass * li + fj.mass * (fj.mass / fi.mass) * (fi.rest_density / fj.rest_density) * lambda[j] +
+                  fj.mass * (2.0f * fi.rest_density / (fi.rest_density + fj.rest_density)) * scorr
+            : fj.mass * (li + lambda[j] + scorr);
+    dp += (weight * spiky_grad_fac(k, sqrtf(r2))) * xij;
   });
   // Wall ghosts push with the particle's own lambda (and s_corr): the solid has no constraint of its own.
   const Vec3 xi = p.pos[i];
@@ -145,9 +171,9 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
   for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     if (r2 <= 0.0f) return;
     const float s = li + pbf_scorr(k, params, r2) * k.h2;
-    dp += (p.pos_mass[j].w * s * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    dp += (pbf_mass(c, p, i, j) * s * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
-  const float rho0 = c.fluids[p.fluid[i]].rest_density;
+  const float rho0 = fi.rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
     if (r2 <= 0.0f) return;
     const float s = li + pbf_scorr(k, params, r2) * k.h2;

@@ -30,12 +30,6 @@ void check_fluid_ratios(const Scene& scene) {
       const double ratio = heavy.rest_density / light.rest_density;
       std::ostringstream os;
       os << scene.source << ": ";
-      if (scene.solver == Solver::Pbf) {
-        os << "solver: \"pbf\" holds fluids of one rest density only so far (its constraint has no number-density "
-           << "form); " << fluid_key(i) << " (" << heavy.rest_density << " kg/m^3) and " << fluid_key(j) << " ("
-           << light.rest_density << " kg/m^3) differ: use \"solver\": \"wcsph\" or \"dfsph\"";
-        throw SceneError(os.str());
-      }
       if (!scene.number_density && ratio > kMassDensityRatioLimit) {
         os << "sph.multiphase: \"mass_density\" holds fluids (all those of a scene) whose rest densities differ by at most a factor "
            << kMassDensityRatioLimit << ", but " << fluid_key(i) << " and " << fluid_key(j) << " differ by " << ratio

@@ -14,8 +14,7 @@ namespace sph {
 //   pressure must be about the same function of the number density on both sides of an interface: layers
 //   at density ratio 100 with one c0, B ratio 0.01, moved at 2.6 m/s; ratio 10 and ratio 1000 with the light
 //   fluid's c0 raised to B ratio 0.1 stayed below 0.1 m/s; docs/results.md);
-// - the Tait limit applies to WCSPH only (DFSPH has no equation of state); solver "pbf": one rest density
-//   (its constraint has no number-density form yet).
+// - the Tait limit applies to WCSPH only (DFSPH and PBF have no equation of state).
 void check_fluid_ratios(const Scene& scene);
 
 // Surface tension against the equation of state (WCSPH): the cohesion's internal pressure
