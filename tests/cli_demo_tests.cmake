@@ -72,10 +72,11 @@ sph_cli_test(demo_budget_overflow --exit 1 --stderr "--budget-ms must be a finit
   -- ${SPH_DEMO} --budget-ms 1e400)
 sph_cli_test(demo_budget_zero --exit 1 --stderr "--budget-ms must be a finite" -- ${SPH_DEMO} --budget-ms 0)
 sph_cli_test(demo_bad_keys --exit 1 --stderr "--keys" --stderr "allowed keys" -- ${SPH_DEMO} --keys Q)
-# A scene the set-up refuses (springs under PBF) is refused as sph_run refuses it, before any window opens
-# (without a display too: not "no display", exit 2).
-sph_cli_test(demo_setup_refused --exit 1 --stderr "fluids.0.spring_modulus" --stderr "pbf"
-  -- env -u DISPLAY ${SPH_DEMO} --scene ${SPH_CLI_SCENES}/viscoelastic.json --set solver=pbf --frames 1)
+# A scene the set-up refuses (springs under PBF at a frame-sized step) is refused as sph_run refuses it,
+# before any window opens (without a display too: not "no display", exit 2).
+sph_cli_test(demo_setup_refused --exit 1 --stderr "time_step.dt" --stderr "springs"
+  -- env -u DISPLAY ${SPH_DEMO} --scene ${SPH_CLI_SCENES}/viscoelastic.json --set solver=pbf
+     --set time_step.mode=fixed --set time_step.dt=0.004 --frames 1)
 
 # --- sph_demo under Xvfb (skipped, exit 77, without xvfb-run) ------------------------------------------
 # xvfb_run.sh: the demo under xvfb-run, with the demo's own exit status (see the script).

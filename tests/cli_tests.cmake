@@ -524,9 +524,10 @@ sph_cli_test(multiphase_soft_light_fluid
 sph_cli_test(surface_tension_too_soft
   --exit 1 --stderr "fluids.0.speed_of_sound" --stderr "surface_tension" --stderr "at least"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/drop_oscillation.json --set fluids.0.speed_of_sound=5 --set solver=wcsph --set sph.surface_tension=cohesion --out ${SPH_CLI_OUT}/sigma_soft)
-sph_cli_test(springs_pbf_refused
-  --exit 1 --stderr "fluids.0.spring_modulus" --stderr "pbf"
-  -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=pbf --out ${SPH_CLI_OUT}/springs_pbf)
+sph_cli_test(springs_pbf_frame_step_refused
+  --exit 1 --stderr "time_step.dt" --stderr "springs" --stderr "pbf"
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=pbf --set time_step.mode=fixed --set time_step.dt=0.004
+     --out ${SPH_CLI_OUT}/springs_pbf)
 sph_cli_test(springs_dfsph_fixed_step_refused
   --exit 1 --stderr "time_step.dt" --stderr "springs" --stderr "adaptive"
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/viscoelastic.json --set solver=dfsph --set time_step.mode=fixed --set time_step.dt=0.001
