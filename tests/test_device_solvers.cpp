@@ -151,3 +151,10 @@ TEST_CASE("device solvers: PBF with two fluids of density ratio 10 in the number
   REQUIRE(scene.number_density);
   check_solver_case(scene, 30);
 }
+
+TEST_CASE("device solvers: PBF with the continuum surface force on a free drop", "[device][solvers][surface_tension]") {
+  // The force at the positions the solve ended at (src/solvers/pbf.h, SyncGridPositionsFn), XSPH at 0.1.
+  const sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=6", "solver=pbf", "pbf.xsph=0.1"});
+  REQUIRE(scene.surface_tension_model == sph::SurfaceTensionModel::Csf);
+  check_solver_case(scene, 30);
+}

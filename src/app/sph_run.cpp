@@ -174,8 +174,8 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
                                                     (st.constants.cubic_spline ? ", sph.kernel: cubic_spline" : ", sph.kernel: poly6_spiky")
                                               : std::string());
   if (scene.solver == Solver::Dfsph) std::cout << ", chebyshev: " << scene.dfsph.chebyshev;
-  if (scene.solver == Solver::Pbf && (st.constants.csf_enabled || st.constants.surface_tension_enabled))
-    std::cout << ", surface tension: none (pbf ignores it)";
+  if (scene.solver == Solver::Pbf && st.constants.surface_tension_enabled)  // PBF has the continuum surface force only
+    std::cout << ", surface tension: none (pbf ignores the cohesion)";
   else
     std::cout << (st.constants.csf_enabled ? ", surface tension: csf"
                                            : (st.constants.surface_tension_enabled ? ", surface tension: cohesion" : ""));

@@ -67,14 +67,15 @@ double csf_contact_energy(double sigma, double contact_angle_deg, double spacing
 
 std::vector<double> cohesion_excess_energy(const SimConstants& c, const ParticleState& ps, double spacing) {
   std::vector<double> excess(ps.size(), 0.0);
-  // PBF has no cohesion (it ignores surface_tension, said at set-up): nothing to release.
-  // Either surface-tension model: the cohesion constant calibrated to sigma measures the surface energy.
+  // PBF has no cohesion (it ignores surface_tension under that model, said at set-up): nothing to release.
+  // Under the continuum surface force it is counted as under the other solvers. Either surface-tension model: the cohesion constant calibrated to sigma measures the surface energy.
   // The cohesion between two fluids (an interface tension): as a force under the cohesion model, for this
   // estimate of the interface's energy under either.
   bool cross = false;
   for (int32_t a = 0; a < c.num_fluids; ++a)
     for (int32_t b = 0; b < c.num_fluids; ++b) cross = cross || c.cross_cohesion[a][b] != 0.0f;
-  if (!(c.surface_tension_enabled || c.csf_enabled || cross) || c.solver == Solver::Pbf || ps.size() == 0) return excess;
+  if (!(c.surface_tension_enabled || c.csf_enabled || cross) || (c.solver == Solver::Pbf && !c.csf_enabled) || ps.size() == 0)
+    return excess;
   const double h = c.kernel.h;
   // A particle's share in the bulk: half the sum over a full cubic lattice of spacing d, per unit mass^2.
   const double lattice = lattice_sum(spacing, h, [&](double r2) {

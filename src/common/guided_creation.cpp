@@ -55,9 +55,14 @@ double cohesion_pressure(double sigma, double h) { return 16.0 / 3.0 * (kCohesio
 
 namespace {
 
+// The least XSPH c with which PBF's continuum surface force held drop_oscillation together (0.1 did at 12 and
+// 16 across, 0.03 and the paper's 0.01 threw particles off: tests/test_surface_tension.cpp).
+constexpr float kPbfCsfXsph = 0.1f;
+
 // What the chosen solver does not read, said once at set-up ("setup: ..." lines of sph_run) rather than
 // silently: DFSPH and PBF integrate their own way (no integrator), and PBF has no laminar or artificial
-// viscosity, surface tension or near pressure (XSPH and its position constraint stand in for them).
+// viscosity, cohesion or near pressure (XSPH and its position constraint stand in for them; its surface
+// tension is the continuum surface force, sph.surface_tension = "csf").
 void report_ignored_settings(const Scene& scene, std::vector<std::string>& report) {
   if (scene.solver == Solver::Wcsph) {
     // Not ignored, but known to be off: docs/results.md, "One kernel for WCSPH".
@@ -84,12 +89,24 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
     const auto add = [&](bool set, const char* key) {
       if (set) ignored += (ignored.empty() ? "" : ", ") + std::string("fluids.") + std::to_string(i) + "." + key;
     };
-    add(f.surface_tension > 0.0, "surface_tension");
+    add(f.surface_tension > 0.0 && scene.surface_tension_model != SurfaceTensionModel::Csf, "surface_tension");
     add(f.near_stiffness > 0.0, "near_stiffness");
     add(f.artificial_viscosity > 0.0 && scene.viscosity == ViscosityModel::Artificial, "artificial_viscosity");
     add(f.viscosity > 1e-3 && scene.viscosity != ViscosityModel::Artificial, "viscosity");
     if (!ignored.empty())
-      report.push_back("note: solver \"pbf\" ignores " + ignored + "; its viscosity is XSPH (pbf.xsph)");
+      report.push_back("note: solver \"pbf\" ignores " + ignored + "; its viscosity is XSPH (pbf.xsph), its surface "
+                       "tension the continuum surface force (sph.surface_tension = \"csf\")");
+  }
+  // Measured on drop_oscillation (docs/results.md, "Surface tension under PBF").
+  const bool csf_tension = scene.surface_tension_model == SurfaceTensionModel::Csf &&
+                           std::any_of(scene.fluids.begin(), scene.fluids.end(),
+                                       [](const FluidSpec& f) { return f.surface_tension > 0.0; });
+  if (csf_tension && scene.pbf.xsph_c < kPbfCsfXsph) {
+    std::ostringstream os;
+    os << "note: under solver \"pbf\" the continuum surface force held a drop together only with pbf.xsph >= "
+       << kPbfCsfXsph << " (PBF's only viscosity); at " << scene.pbf.xsph_c
+       << " a 0.1 m drop threw particles off (docs/results.md, \"Surface tension under PBF\")";
+    report.push_back(os.str());
   }
 }
 

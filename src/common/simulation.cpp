@@ -259,12 +259,15 @@ void Simulation::switch_backend(const BackendFactory& factory) {
 }
 
 // WCSPH: the thesis's limits (time_step.h, choose_time_step); DFSPH and PBF: the CFL step of [BK15]
-// (choose_incompressible_step).
+// (choose_incompressible_step), with the acceleration's limit under DFSPH, and under PBF where the continuum
+// surface force acts (its capillary waves; otherwise PBF's step follows the speeds only).
 StepChoice Simulation::choose_step() const {
-  if (setup_.constants.solver != Solver::Wcsph)
+  const SimConstants& c = setup_.constants;
+  if (c.solver != Solver::Wcsph) {
+    const bool accel_limit = c.solver == Solver::Dfsph || (c.solver == Solver::Pbf && c.csf_enabled);
     return choose_incompressible_step(scene_.time_step, setup_.spacing, setup_.viscous_rate, diag_.max_speed, setup_.h,
-                                      setup_.constants.solver == Solver::Dfsph ? diag_.max_accel : 0.0,
-                                      setup_.spring_rate);
+                                      accel_limit ? diag_.max_accel : 0.0, setup_.spring_rate);
+  }
   return choose_time_step(scene_.time_step, setup_.h, setup_.max_speed_of_sound, setup_.viscous_rate,
                           diag_.max_speed, diag_.max_accel);
 }

@@ -9,7 +9,7 @@
 //   constraint_solve: iterations of density rho(x*), lambda (eqs. 8-11), Delta p (eq. 14, with s_corr),
 //                     x* += Delta p and the shapes again; a last density for the error and what follows
 //   correct:          v = (x* - x) / dt
-//   forces:           vorticity confinement (eqs. 15, 16) and XSPH (eq. 17) on v
+//   forces:           vorticity confinement (eqs. 15, 16), the continuum surface force and XSPH (eq. 17) on v
 //   recycle
 // The old position x is pos_start (the shapes test the segment x -> x*). The neighbours are the pairs the grid
 // phase selected at x*, evaluated at the current positions (for_each_pbf_pair, src/common/pbf.h).
@@ -27,6 +27,7 @@
 #include "../common/sph_hd.h"
 #include "../common/springs.h"
 #include "reduction.h"
+#include "surface_forces.h"
 #include "wcsph.h"
 
 namespace sph {
@@ -150,8 +151,9 @@ struct VorticityFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { p.omega[i] = pbf_vorticity(*c, g, p, p.vel, i); }
 };
 
-// XSPH's velocity correction into xsph_dv and vorticity confinement's acceleration into delta_pos, from the
-// velocities v (and vorticities) of every particle; ApplyVelocityFn adds them once all are known.
+// XSPH's velocity correction into xsph_dv and vorticity confinement's acceleration into delta_pos (to which
+// the continuum surface force adds its own), from the velocities v (and vorticities) of every particle;
+// ApplyVelocityFn adds them once all are known.
 template <class C>
 struct VelocityCorrectionFn {
   C c;
@@ -163,6 +165,14 @@ struct VelocityCorrectionFn {
     p.xsph_dv[i] = s.xsph_c > 0.0f ? pbf_xsph(*c, g, p, p.vel, s, i) : zero;
     p.delta_pos[i] = s.vorticity_epsilon > 0.0f ? pbf_vorticity_confinement(*c, g, p, p.omega, s, i) : zero;
   }
+};
+
+// The grid's copy of the positions, pos_mass (written at x* by the grid phase), moved to where the
+// constraint iterations left the particles: the continuum surface force's loops read it (surface_forces.h).
+// The neighbour lists stay those of x* (pairs within 1.2 h), as for the iterations.
+struct SyncGridPositionsFn {
+  ParticleView p;
+  SPH_HD void operator()(int32_t i) const { p.pos_mass[i] = with_w(p.pos[i], p.pos_mass[i].w); }
 };
 
 struct ApplyVelocityFn {
@@ -227,13 +237,22 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
       stats.density_iterations = solve(x, dt, stats.density_error, stats.density_capped);
       return;
     case Phase::Correct: x.for_each(VelocityFn{x.particles(), dt}); return;
-    case Phase::Forces:
+    case Phase::Forces: {
+      // The continuum surface force (surface_forces.h) at the end of the step, at the positions and densities
+      // the solve ended at, applied with vorticity confinement as an acceleration over dt: the next step's
+      // prediction carries it, as it carries gravity.
+      const bool csf = x.host_constants().csf_enabled != 0;
       if (s.vorticity_epsilon > 0.0f) x.for_each(VorticityFn<C>{x.constants(), x.grid(), x.particles()});
-      if (s.vorticity_epsilon > 0.0f || s.xsph_c > 0.0f) {
+      if (s.vorticity_epsilon > 0.0f || s.xsph_c > 0.0f || csf) {
         x.for_each(VelocityCorrectionFn<C>{x.constants(), x.grid(), x.particles()});
+        if (csf) {
+          x.for_each(SyncGridPositionsFn{x.particles()});
+          continuum_surface_force(x, x.particles().delta_pos);
+        }
         x.for_each(ApplyVelocityFn{x.particles(), dt});
       }
       return;
+    }
     case Phase::Recycle: x.recycle(); return;
     default: return;  // not a phase of a PBF step: the back ends refuse it before
   }

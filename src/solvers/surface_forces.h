@@ -1,7 +1,7 @@
 // The continuum surface force (src/common/surface_tension_csf.h) as loops of a solver's forces phase, shared
-// by WCSPH and DFSPH: the colour gradient of every particle, then its own estimate of the curvature (which
-// reads its neighbours' gradients), then that estimate limited by its neighbours' (which reads their
-// estimates), then the force added to the acceleration the forces loop wrote. And the cohesion between two
+// by WCSPH, DFSPH and PBF: the colour gradient of every particle, then its own estimate of the curvature
+// (which reads its neighbours' gradients), then that estimate limited by its neighbours' (which reads their
+// estimates), then the force added to an acceleration (the one the forces loop wrote; PBF's own array). And the cohesion between two
 // fluids that sets their interface tension (forces.h, interface_cohesion), also after the forces loop.
 #pragma once
 
@@ -47,12 +47,14 @@ struct CsfLimitCurvatureFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { p.curvature[i] = csf_limited_curvature(*c, g, p, i); }
 };
 
+// The force as an acceleration added to out [m/s^2] (p.acc under WCSPH and DFSPH).
 template <class C>
 struct CsfForceFn {
   C c;
   ParticleView p;
+  Vec3* out;
   SPH_KERNEL_FN void operator()(int32_t i) const {
-    if (p.age[i] >= 0.0f) p.acc[i] += csf_acceleration(*c, p, i);
+    if (p.age[i] >= 0.0f) out[i] += csf_acceleration(*c, p, i);
   }
 };
 
@@ -62,8 +64,9 @@ struct CsfInterfaceForceFn {
   C c;
   GridView g;
   ParticleView p;
+  Vec3* out;
   SPH_KERNEL_FN void operator()(int32_t i) const {
-    if (p.age[i] >= 0.0f) p.acc[i] += csf_interface_acceleration(*c, g, p, i);
+    if (p.age[i] >= 0.0f) out[i] += csf_interface_acceleration(*c, g, p, i);
   }
 };
 
@@ -85,9 +88,10 @@ void interface_cohesion_forces(Exec& x) {
   x.for_each(InterfaceCohesionFn<C>{x.constants(), x.grid(), x.particles()});
 }
 
-// After the forces loop of a step whose constants enable the continuum surface force.
+// The continuum surface force, where the constants enable it, at the positions the grid's pos_mass holds and
+// the densities in p.density, added to out [m/s^2] (one entry per particle).
 template <class Exec>
-void continuum_surface_force(Exec& x) {
+void continuum_surface_force(Exec& x, Vec3* out) {
   if (!x.host_constants().csf_enabled) return;
   using C = typename Exec::Constants;
   x.for_each(CsfNormalFn<C>{x.constants(), x.grid(), x.particles()});
@@ -95,9 +99,15 @@ void continuum_surface_force(Exec& x) {
   x.for_each(CsfCurvatureFn<C>{x.constants(), x.grid(), x.particles()});
   x.for_each(CsfLimitCurvatureFn<C>{x.constants(), x.grid(), x.particles()});
   if (x.host_constants().csf_interface_enabled)
-    x.for_each(CsfInterfaceForceFn<C>{x.constants(), x.grid(), x.particles()});
+    x.for_each(CsfInterfaceForceFn<C>{x.constants(), x.grid(), x.particles(), out});
   else
-    x.for_each(CsfForceFn<C>{x.constants(), x.particles()});
+    x.for_each(CsfForceFn<C>{x.constants(), x.particles(), out});
+}
+
+// After the forces loop of a WCSPH or DFSPH step: the force into the acceleration that loop wrote.
+template <class Exec>
+void continuum_surface_force(Exec& x) {
+  continuum_surface_force(x, x.particles().acc);
 }
 
 }  // namespace sph
