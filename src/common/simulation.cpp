@@ -265,7 +265,9 @@ StepChoice Simulation::choose_step() const {
   const SimConstants& c = setup_.constants;
   if (c.solver != Solver::Wcsph) {
     const bool accel_limit = c.solver == Solver::Dfsph || (c.solver == Solver::Pbf && c.csf_enabled);
-    return choose_incompressible_step(scene_.time_step, setup_.spacing, setup_.viscous_rate, diag_.max_speed, setup_.h,
+    // PBF applies no laminar viscosity (XSPH stands in), so the laminar viscosity's limit does not bind it.
+    const double viscous_rate = c.solver == Solver::Pbf ? 0.0 : setup_.viscous_rate;
+    return choose_incompressible_step(scene_.time_step, setup_.spacing, viscous_rate, diag_.max_speed, setup_.h,
                                       accel_limit ? diag_.max_accel : 0.0, setup_.spring_rate);
   }
   return choose_time_step(scene_.time_step, setup_.h, setup_.max_speed_of_sound, setup_.viscous_rate,
