@@ -217,6 +217,15 @@ TEST_CASE("springs where they cannot be kept are refused by name", "[viscoelasti
                     Contains("time_step.dt") && Contains("springs") && Contains("adaptive"));
   CHECK_THROWS_WITH(sph::create_setup(scene_file("viscoelastic.json", {"solver=dfsph", "time_step.min=0.001"}), 1.0),
                     Contains("time_step.min") && Contains("springs"));
+  // Where the springs hold the adaptive step, the set-up says how far (and, under PBF, that the scene's
+  // artificial and laminar viscosities are not applied).
+  const sph::Setup pbf = sph::create_setup(scene_file("viscoelastic.json", {"solver=pbf"}), 1.0);
+  const auto reports = [&](const char* text) {
+    return std::any_of(pbf.report.begin(), pbf.report.end(),
+                       [&](const std::string& line) { return line.find(text) != std::string::npos; });
+  };
+  CHECK(reports("hold the step at or below"));
+  CHECK(reports("fluids.0.artificial_viscosity"));
   // PBF keeps the same limit: its frame-sized steps are refused with springs.
   CHECK_THROWS_WITH(sph::create_setup(scene_file("viscoelastic.json", {"solver=pbf", "time_step.mode=fixed",
                                                                       "time_step.dt=0.004"}), 1.0),

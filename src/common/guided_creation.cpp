@@ -89,13 +89,16 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
     const auto add = [&](bool set, const char* key) {
       if (set) ignored += (ignored.empty() ? "" : ", ") + std::string("fluids.") + std::to_string(i) + "." + key;
     };
-    add(f.surface_tension > 0.0 && scene.surface_tension_model != SurfaceTensionModel::Csf, "surface_tension");
+    const bool cohesion = f.surface_tension > 0.0 && scene.surface_tension_model != SurfaceTensionModel::Csf;
+    add(cohesion, "surface_tension");
     add(f.near_stiffness > 0.0, "near_stiffness");
-    add(f.artificial_viscosity > 0.0 && scene.viscosity == ViscosityModel::Artificial, "artificial_viscosity");
+    // WCSPH and DFSPH apply the artificial viscosity whatever sph.viscosity says (guided creation sets
+    // artificial_enabled from the fluids alone).
+    add(f.artificial_viscosity > 0.0, "artificial_viscosity");
     add(f.viscosity > 1e-3 && scene.viscosity != ViscosityModel::Artificial, "viscosity");
     if (!ignored.empty())
-      report.push_back("note: solver \"pbf\" ignores " + ignored + "; its viscosity is XSPH (pbf.xsph), its surface "
-                       "tension the continuum surface force (sph.surface_tension = \"csf\")");
+      report.push_back("note: solver \"pbf\" ignores " + ignored + "; its viscosity is XSPH (pbf.xsph)" +
+                       (cohesion ? ", its surface tension the continuum surface force (sph.surface_tension = \"csf\")" : ""));
   }
   // Measured on drop_oscillation (docs/results.md, "Surface tension under PBF").
   const bool csf_tension = scene.surface_tension_model == SurfaceTensionModel::Csf &&
@@ -439,6 +442,17 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     s.max_speed_of_sound = std::max(s.max_speed_of_sound, f.speed_of_sound);
   }
   check_spring_step(scene, s.spring_rate);
+  // Where the springs hold the adaptive step of DFSPH or PBF below its max, say so: a stiff jelly can take
+  // many steps per simulated second (a 1 GPa jelly at 5 mm spacing: about 6e5), which the run would not
+  // explain otherwise.
+  if (scene.solver != Solver::Wcsph && s.spring_rate > 0.0 && scene.time_step.mode == TimeStepMode::Adaptive &&
+      spring_step_bound(s.spring_rate) < scene.time_step.max) {
+    const double bound = spring_step_bound(s.spring_rate);
+    std::ostringstream os;
+    os << "note: the springs (spring_modulus) hold the step at or below " << bound << " s (their fastest mode, "
+       << s.spring_rate << " rad/s): at least " << std::ceil(1.0 / bound) << " steps per simulated second";
+    s.report.push_back(os.str());
+  }
   for (int32_t i = 1; i < c.num_fluids; ++i)
     if (c.fluids[i].mass != c.fluids[0].mass) c.number_density = scene.number_density ? 1 : 0;
   for (const InterfaceTensionSpec& t : scene.interface_tensions) {

@@ -99,8 +99,8 @@ void check_contact_angle(const Scene& scene) {
     if (!(f.contact_angle > 0.0)) continue;
     const std::string key = scene.source + ": " + fluid_key(i) + ".contact_angle";
     if (scene.solver == Solver::Pbf)
-      throw SceneError(key + ": solver \"pbf\" holds no contact angle (its continuum surface force is measured on free "
-                             "surfaces only); use \"wcsph\" or \"dfsph\"");
+      throw SceneError(key + ": solver \"pbf\" holds no contact angle (it has neither the cohesion's adhesion nor the "
+                             "continuum surface force's wall images); use \"wcsph\" or \"dfsph\"");
     if (!(f.surface_tension > 0.0))
       throw SceneError(key + ": a contact angle is a property of the fluid's surface tension; give " + fluid_key(i) +
                        ".surface_tension > 0 [N/m] or remove contact_angle");
@@ -141,8 +141,8 @@ void check_interface_tension(const Scene& scene) {
   if (scene.interface_tensions.empty()) return;
   const std::string key = scene.source + ": interface_tension";
   if (scene.solver == Solver::Pbf)
-    throw SceneError(key + ": solver \"pbf\" has no interface tension (its continuum surface force is measured on free "
-                           "surfaces only); use \"wcsph\" or \"dfsph\"");
+    throw SceneError(key + ": solver \"pbf\" has no interface tension between two fluids (its continuum surface force "
+                           "acts with each fluid's own surface_tension only); use \"wcsph\" or \"dfsph\"");
   if (scene.surface_tension_model != SurfaceTensionModel::Csf) return;
   // The share of the other fluid (surface_tension_csf.h) counts every fluid but a particle's own as one.
   if (scene.fluids.size() != 2)
