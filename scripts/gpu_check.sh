@@ -232,6 +232,12 @@ run() {
          --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02
     step "frames host = cuda: jelly springs under DFSPH" 60 frames_match jelly_dfsph viscoelastic.json --time 0.15 --frames-every 0.03 \
          --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02 --set solver=dfsph
+    step "frames host = cuda: jelly springs under PBF" 60 frames_match jelly_pbf viscoelastic.json --time 0.05 --frames-every 0.01 \
+         --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02 --set solver=pbf
+    step "frames host = cuda: two layers (ratio 10), PBF" 60 frames_match layers_pbf two_layers.json --time 0.05 --frames-every 0.01 \
+         --set solver=pbf
+    step "frames host = cuda: drop, PBF with the continuum surface force" 60 frames_match drop_pbf drop_oscillation.json --time 0.05 \
+         --frames-every 0.01 --set solver=pbf --set pbf.xsph=0.1
     step "frames host = cuda: contact angles (sheared images)" 60 frames_match contact contact_angle.json --time 0.05 --frames-every 0.01
     step "frames host = cuda: compound drop (interface tension, csf)" 60 frames_match compound compound_drop.json --time 0.05 \
          --frames-every 0.01 --set resolution.spacing=0.006
