@@ -59,6 +59,10 @@ namespace {
 // 16 across, 0.03 and the paper's 0.01 threw particles off: tests/test_surface_tension.cpp).
 constexpr float kPbfCsfXsph = 0.1f;
 
+// The least iteration count with which PBF held a heavy fluid over a light one (rayleigh_taylor: 4 blew up
+// at 0.19 s, 10 grew within 3% of linear theory: tests/test_multiphase.cpp).
+constexpr int32_t kPbfMultiphaseIterations = 10;
+
 // What the chosen solver does not read, said once at set-up ("setup: ..." lines of sph_run) rather than
 // silently: DFSPH and PBF integrate their own way (no integrator), and PBF has no laminar or artificial
 // viscosity, cohesion or near pressure (XSPH and its position constraint stand in for them; its surface
@@ -99,6 +103,16 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
     if (!ignored.empty())
       report.push_back("note: solver \"pbf\" ignores " + ignored + "; its viscosity is XSPH (pbf.xsph)" +
                        (cohesion ? ", its surface tension the continuum surface force (sph.surface_tension = \"csf\")" : ""));
+  }
+  // Measured on rayleigh_taylor (docs/results.md, "Several fluids under PBF"): with 4 iterations the heavy
+  // layer was not held up over the light one and the run blew up; with 10 it grew as linear theory says.
+  bool densities_differ = false;
+  for (const FluidSpec& f : scene.fluids) densities_differ = densities_differ || f.rest_density != scene.fluids[0].rest_density;
+  if (densities_differ && scene.pbf.iterations < kPbfMultiphaseIterations) {
+    std::ostringstream os;
+    os << "note: under solver \"pbf\" a heavy fluid over a light one needed pbf.iterations >= " << kPbfMultiphaseIterations
+       << " (at " << scene.pbf.iterations << " rayleigh_taylor blew up; docs/results.md, \"Several fluids under PBF\")";
+    report.push_back(os.str());
   }
   // Measured on drop_oscillation (docs/results.md, "Surface tension under PBF").
   const bool csf_tension = scene.surface_tension_model == SurfaceTensionModel::Csf &&
