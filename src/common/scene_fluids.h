@@ -32,8 +32,8 @@ void check_surface_tension(const Scene& scene, double h);
 // steps have a limit of the springs' own, time_step.h). SceneError naming the key otherwise.
 void check_springs(const Scene& scene);
 
-// A contact angle only where it holds: a fluid with surface_tension > 0 and a solver with surface tension (not
-// PBF); under the cohesion model (Akinci's adhesion, cohesion_energy.h) walls of boundary particles or rigid
+// A contact angle only where it holds: a fluid with surface_tension > 0 and a solver with a wall condition
+// for it (not PBF, which has neither the adhesion nor the continuum surface force's wall images); under the cohesion model (Akinci's adhesion, cohesion_energy.h) walls of boundary particles or rigid
 // bodies for it to act on; under the continuum surface force (its wall condition, surface_tension_csf.h) a
 // wall it can act at and an angle in [kCsfContactAngleMin, kCsfContactAngleMax], the range it was measured to
 // hold. SceneError naming the key otherwise.
