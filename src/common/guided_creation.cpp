@@ -68,11 +68,12 @@ constexpr int32_t kPbfMultiphaseIterations = 10;
 // viscosity, cohesion or near pressure (XSPH and its position constraint stand in for them; its surface
 // tension is the continuum surface force, sph.surface_tension = "csf").
 void report_ignored_settings(const Scene& scene, std::vector<std::string>& report) {
+  // A fluid's surface tension under the continuum surface force.
+  const bool csf_tension = scene.surface_tension_model == SurfaceTensionModel::Csf &&
+                           std::any_of(scene.fluids.begin(), scene.fluids.end(),
+                                       [](const FluidSpec& f) { return f.surface_tension > 0.0; });
   if (scene.solver == Solver::Wcsph) {
     // Not ignored, but known to be off: docs/results.md, "One kernel for WCSPH".
-    const bool csf_tension = scene.surface_tension_model == SurfaceTensionModel::Csf &&
-                             std::any_of(scene.fluids.begin(), scene.fluids.end(),
-                                         [](const FluidSpec& f) { return f.surface_tension > 0.0; });
     if (csf_tension && !wcsph_cubic_spline(scene))
       report.push_back("note: under WCSPH with sph.kernel = \"poly6_spiky\" the continuum surface force holds a drop's "
                        "pressure 15 to 32% above Laplace's 2 sigma / R; sph.kernel = \"cubic_spline\" holds it within 10% "
@@ -115,9 +116,6 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
     report.push_back(os.str());
   }
   // Measured on drop_oscillation (docs/results.md, "Surface tension under PBF").
-  const bool csf_tension = scene.surface_tension_model == SurfaceTensionModel::Csf &&
-                           std::any_of(scene.fluids.begin(), scene.fluids.end(),
-                                       [](const FluidSpec& f) { return f.surface_tension > 0.0; });
   if (csf_tension && scene.pbf.xsph_c < kPbfCsfXsph) {
     std::ostringstream os;
     os << "note: under solver \"pbf\" the continuum surface force held a drop together only with pbf.xsph >= "
