@@ -45,6 +45,8 @@ void check_pbf_equal(const sph::PbfConstants& a, const sph::PbfConstants& b) {
   CHECK(a.clamp_expansion == b.clamp_expansion);
   CHECK(a.xsph_c == b.xsph_c);
   CHECK(a.vorticity_epsilon == b.vorticity_epsilon);
+  CHECK(a.jacobi_weight == b.jacobi_weight);
+  CHECK(a.chebyshev == b.chebyshev);
 }
 
 // One bad value of a block key and the words its refusal must hold.
@@ -110,7 +112,7 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
   SECTION("pbf") {
     const sph::Scene s = parse_solver("pbf", R"("pbf": { "iterations": 9, "density_tolerance": 0.005, "relaxation": 2.5,
         "scorr_k": 0.3, "scorr_n": 3, "scorr_dq": 0.25, "clamp_expansion": false, "xsph": 0.02,
-        "vorticity_epsilon": 0.5 })");
+        "vorticity_epsilon": 0.5, "jacobi_weight": 0.6, "chebyshev": 0.5 })");
     const sph::PbfConstants& b = s.pbf;
     CHECK(b.iterations == 9);
     CHECK(b.density_tolerance == Approx(0.005f));
@@ -121,11 +123,15 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
     CHECK(b.clamp_expansion == 0);
     CHECK(b.xsph_c == Approx(0.02f));
     CHECK(b.vorticity_epsilon == Approx(0.5f));
+    CHECK(b.jacobi_weight == Approx(0.6f));
+    CHECK(b.chebyshev == Approx(0.5f));
     // The closed lower ends are allowed: no tolerance (always all iterations), no s_corr, no XSPH.
     const sph::Scene z = parse_solver("pbf", R"("pbf": { "density_tolerance": 0, "relaxation": 0.001, "scorr_k": 0,
-        "xsph": 0, "vorticity_epsilon": 0 })");
+        "xsph": 0, "vorticity_epsilon": 0, "jacobi_weight": 1, "chebyshev": 0 })");
     CHECK(z.pbf.density_tolerance == 0.0f);
     CHECK(z.pbf.scorr_k == 0.0f);
+    CHECK(z.pbf.jacobi_weight == 1.0f);  // the paper's plain Jacobi iteration
+    CHECK(z.pbf.chebyshev == 0.0f);
   }
   SECTION("through --set, as sph_run --set solver=... does") {
     const sph::Scene s = parse(SceneText{}, {"solver=pbf", "pbf.iterations=7", "pbf.clamp_expansion=false"});
@@ -171,6 +177,9 @@ TEST_CASE("loader: scene solver values out of range are refused with the key pat
         {"scorr_dq", "0.999999999", "allowed (0, 1)"},      {"xsph", "-0.1", "allowed [0, 1]"},
         {"xsph", "1.5", "allowed [0, 1]"},                  {"vorticity_epsilon", "-1", "allowed [0, 1000]"},
         {"vorticity_epsilon", "1e4", "allowed [0, 1000]"},  {"clamp_expansion", "0", "expected true or false"},
+        {"jacobi_weight", "0", "allowed (0, 1]"},           {"jacobi_weight", "1.2", "allowed (0, 1]"},
+        {"jacobi_weight", "-0.5", "allowed (0, 1]"},        {"chebyshev", "1", "allowed [0, 0.99]"},
+        {"chebyshev", "-0.1", "allowed [0, 0.99]"},         {"chebyshev", "\"fast\"", "expected a number"},
     };
     for (const BadValue& b : bad) {
       INFO("pbf." << b.key << " = " << b.value);
@@ -216,7 +225,7 @@ TEST_CASE("loader: scene solver names and blocks are checked", "[loader][solver]
                         Contains("test.json") && Contains("pbf.epsilon") && Contains("unknown key") &&
                             Contains("iterations") && Contains("relaxation") && Contains("scorr_k") && Contains("scorr_n") &&
                             Contains("scorr_dq") && Contains("clamp_expansion") && Contains("xsph") &&
-                            Contains("vorticity_epsilon"));
+                            Contains("vorticity_epsilon") && Contains("jacobi_weight") && Contains("chebyshev"));
     // A solver key at the top level, outside its block, is an unknown key there.
     REQUIRE_THROWS_WITH(parse_with_extra(R"("solver": "pbf", "iterations": 4)"),
                         Contains("iterations") && Contains("unknown key") && Contains("pbf"));

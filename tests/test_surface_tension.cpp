@@ -153,9 +153,11 @@ TEST_CASE("under DFSPH the continuum surface force pulls a cube into a ball of i
 
 TEST_CASE("under PBF the continuum surface force pulls a cube into a ball, with XSPH for its viscosity",
           "[surface_tension][pbf]") {
-  // PBF has no laminar viscosity (it ignores the scene's 0.5 Pa s); XSPH at c = 0.1 damps the collapse.
+  // PBF has no laminar viscosity (it ignores the scene's 0.5 Pa s); XSPH at c = 0.1 damps the collapse. With
+  // the paper's plain iteration, as the set-up note asks (the default's Chebyshev weights shed particles: the
+  // next test).
   for (int across : {12, 16}) {
-    const DropRun r = run_drop(across, 1.0, {"solver=pbf", "pbf.xsph=0.1"});
+    const DropRun r = run_drop(across, 1.0, {"solver=pbf", "pbf.xsph=0.1", "pbf.jacobi_weight=1", "pbf.chebyshev=0"});
     INFO(across << " across: radius " << r.radius << " m, outermost particle " << r.outermost << " m, volume-equivalent "
                 << r.equivalent << " m; kinetic energy at most " << r.ke_max << " J, surface energy released " << r.released
                 << " J, initially " << r.initial_surface_energy << " J, budget " << r.budget << " J");
@@ -182,8 +184,19 @@ TEST_CASE("under PBF with the paper's XSPH alone a cube held by the continuum su
                        [](const std::string& line) { return line.find("pbf.xsph >= 0.1") != std::string::npos; });
   };
   CHECK(notes_xsph({"solver=pbf"}));
-  CHECK_FALSE(notes_xsph({"solver=pbf", "pbf.xsph=0.1"}));
+  CHECK(notes_xsph({"solver=pbf", "pbf.xsph=0.1"}));  // the default iteration (next test)
+  CHECK_FALSE(notes_xsph({"solver=pbf", "pbf.xsph=0.1", "pbf.jacobi_weight=1", "pbf.chebyshev=0"}));
   CHECK_FALSE(notes_xsph({"solver=dfsph"}));
+}
+
+TEST_CASE("under PBF with the default Chebyshev-accelerated iteration a cube held by the continuum surface force "
+          "sheds particles", "[surface_tension][pbf]") {
+  // The method where it fails: the weights that quiet a resting column (docs/results.md, issue 12) drive the
+  // clumps the collapsing surface forms apart, and particles leave the drop even with XSPH at 0.1 (14 across:
+  // 7 particles beyond the drop at 0.6 s, the farthest 0.32 m from its centre; the plain iteration lost 1).
+  const DropRun r = run_drop(14, 0.6, {"solver=pbf", "pbf.xsph=0.1"});
+  INFO("outermost particle " << r.outermost << " m, volume-equivalent " << r.equivalent << " m");
+  CHECK(r.outermost > 2.0 * r.equivalent);
 }
 
 namespace {

@@ -174,6 +174,9 @@ void print_setup(const Options& o, const Scene& scene, Simulation& sim, bool by_
                                                     (st.constants.cubic_spline ? ", sph.kernel: cubic_spline" : ", sph.kernel: poly6_spiky")
                                               : std::string());
   if (scene.solver == Solver::Dfsph) std::cout << ", chebyshev: " << scene.dfsph.chebyshev;
+  if (scene.solver == Solver::Pbf)
+    std::cout << ", iterations: " << scene.pbf.iterations << ", jacobi_weight: " << scene.pbf.jacobi_weight
+              << ", chebyshev: " << scene.pbf.chebyshev;
   if (scene.solver == Solver::Pbf && st.constants.surface_tension_enabled)  // PBF has the continuum surface force only
     std::cout << ", surface tension: none (pbf ignores the cohesion)";
   else

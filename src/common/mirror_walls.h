@@ -74,6 +74,21 @@ SPH_HD inline NearWalls near_walls(const SimConstants& c, Vec3 x) {
   return w;
 }
 
+// Moves x out to `distance` [m] from each mirror wall (near_walls) it is nearer than that, along the wall's
+// normal. PBF's collision (boundaries.h) puts a particle that crossed a wall onto the wall's plane, where it
+// coincides with its own image: the pair is at r = 0, which no constraint gradient acts along, so nothing
+// pushes it off the wall, and the particles a front drives into a wall pile up on its plane (the 16k dam
+// break under PBF blew up where its front met the far wall, at 2 and at 4 ms steps; docs/results.md). At
+// half a spacing its image is a spacing away, as in the mirror-extended lattice.
+SPH_HD inline void keep_off_mirror_walls(const SimConstants& c, Vec3& x, float distance) {
+  const NearWalls w = near_walls(c, x);
+  for (int32_t i = 0; i < kMaxMirrorWalls; ++i) {
+    if (i >= w.count) continue;
+    const float gap = dot(x, w.normal[i]) - w.offset[i];
+    if (gap < distance) x += (distance - gap) * w.normal[i];
+  }
+}
+
 // Number of images of a neighbour: itself (image 0) and its ghosts, one per non-empty subset of the walls.
 SPH_HD inline int32_t image_count(const NearWalls& w) { return 1 << w.count; }
 

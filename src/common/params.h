@@ -76,6 +76,13 @@ struct PbfConstants {
   float vorticity_epsilon;  // vorticity confinement strength [m/s] (a = eps N x omega), 0: off
   int32_t iterations;       // constraint iterations per step (the most, with a tolerance)
   float density_tolerance;  // stop early once the mean compression max(C, 0) is at most this; 0: always iterations
+  // Weighted Jacobi: each iteration applies this share of Delta p, in (0, 1]. Poly6's density read against
+  // Spiky's correction overshoots the short density waves (G(q) up to 2.8, docs/results.md "Why PBF rattles
+  // at rest"); 0.7 brings those inside the stable band that the Chebyshev weights below can then widen.
+  float jacobi_weight;
+  // Chebyshev acceleration of the iterations ([Wan15], solvers/chebyshev.h): the estimate rho of the weighted
+  // iteration's spectral radius, in [0, 0.99]; 0: plain (weighted) Jacobi.
+  float chebyshev;
 };
 
 // [BK15]'s defaults: eta = 0.01% and eta_v = 0.1% (section 5), at least 2 density iterations (SPlisHSPlasH's
@@ -88,7 +95,7 @@ constexpr DfsphConstants dfsph_defaults() { return DfsphConstants{1e-4f, 1e-3f, 
 // constraint nothing pulls, and s_corr only pushes the free surface outward a little every step; as
 // v = Delta x / dt that is a speed growing as the step shrinks, and a resting column with k = 0.1 blew up
 // within 0.015 s at dt = 0.25 ms (measured; tests/test_solvers.cpp keeps the default stable there).
-constexpr PbfConstants pbf_defaults() { return PbfConstants{0.1f, 0.0f, 4, 0.2f, 1, 0.01f, 0.0f, 4, 0.0f}; }
+constexpr PbfConstants pbf_defaults() { return PbfConstants{0.1f, 0.0f, 4, 0.2f, 1, 0.01f, 0.0f, 4, 0.0f, 0.7f, 0.85f}; }
 
 enum class Integrator : int32_t {
   ExplicitEuler,            // thesis eq. 2.29, kept to show where it fails
@@ -183,6 +190,9 @@ struct SimConstants {
   Integrator integrator;
   int32_t clamp_negative_pressure;  // 1: P = max(P, 0) (no tensile pull at a free surface)
   int32_t mirror_walls;             // 1: neighbours near walls act also as their mirror images (mirror_walls.h)
+  // Half the particle spacing [m]: under PBF the nearest a particle's centre comes to a mirror wall
+  // (mirror_walls.h, keep_off_mirror_walls), where its image is one spacing away as in the lattice.
+  float mirror_wall_distance;
   // 1: WCSPH with sph.kernel = cubic_spline: its density (summation and continuity), pressure, viscosity and
   // XSPH terms use the cubic spline in place of Poly6 and Spiky (kernels.h, density_kernel, gradient_dwdr).
   // 0 under DFSPH and PBF, whose own sums have their own kernels (dfsph.h, pbf.h).

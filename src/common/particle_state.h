@@ -41,7 +41,8 @@ struct Spawn {
 // - DFSPH: alpha [m^5/kg], kappa [m^2/s^2], solver_error (each particle's share of the error the solver
 //   checks) and support (1: enough neighbours for the divergence solve, dfsph_support).
 // - PBF: lambda [m^2], solver_error, delta_pos (the position correction [m], then the vorticity
-//   confinement's acceleration [m/s^2]) and omega (vorticity [1/s]).
+//   confinement's acceleration [m/s^2]), omega (vorticity [1/s]) and pos_previous (the constraint
+//   iteration's position one iteration back [m], for the Chebyshev weights).
 // - The continuum surface force (surface_tension_csf.h), with any solver: surface_normal (the colour
 //   gradient n [1/m]), curvature_own (each particle's own estimate [1/m]) and curvature (that estimate
 //   limited by the neighbours', the one the force uses [1/m]).
@@ -49,7 +50,7 @@ struct Spawn {
 // near_pressure (particle_view.h).
 #define SPH_SOLVER_FIELDS(X) \
   X(float, alpha) X(float, kappa) X(float, lambda) X(float, solver_error) X(Vec3, delta_pos) X(Vec3, omega) \
-  X(int32_t, support) X(Vec3, surface_normal) X(float, curvature_own) X(float, curvature)
+  X(Vec3, pos_previous) X(int32_t, support) X(Vec3, surface_normal) X(float, curvature_own) X(float, curvature)
 
 // Sizes the derived fields of `arrays` (ParticleState here, the device arrays in src/cuda/device_arrays.h:
 // any type with the fields of these lists as resizable vectors) to n particles, and the solver fields to n
@@ -126,7 +127,7 @@ struct ParticleState {
                         id.data(),            pos_start.data(),     pos_mass.data(), vel_inv_rho.data(),
                         pressure_rho2.data(), near_pressure_rho2.data(), alpha.data(),       kappa.data(),
                         lambda.data(),        solver_error.data(),       delta_pos.data(),   omega.data(),
-                        support.data(),       surface_normal.data(),     curvature_own.data(),
+                        pos_previous.data(),  support.data(),       surface_normal.data(),     curvature_own.data(),
                         curvature.data()};
   }
 };

@@ -41,6 +41,7 @@ struct ParticleView {
   float* solver_error;  // each particle's share of the error the solver checks (dimensionless)
   Vec3* delta_pos;      // PBF: position correction [m]; after the solve, vorticity confinement [m/s^2]
   Vec3* omega;          // PBF: vorticity [1/s]
+  Vec3* pos_previous;   // PBF: the constraint solve's position one iteration back [m] (Chebyshev weights)
   int32_t* support;     // DFSPH: 1 where the neighbourhood is full enough for the divergence solve
   Vec3* surface_normal; // continuum surface force: colour gradient n [1/m] (surface_tension_csf.h)
   float* curvature_own;  // continuum surface force: each particle's own estimate of the mean curvature [1/m], or

@@ -88,8 +88,12 @@ SPH_HD inline float pbf_constraint(float density, float rest_density) { return d
 // the density rho_i (pbf_density's sum, the same bits) that C_i = rho_i / rho0 - 1 reads, both from one pass
 // over the neighbours: the density into `density`, lambda returned. max(C_i, 0) with clamp_expansion.
 // Positive under expansion (C < 0): lambda pulls neighbours in; negative under compression. Returns 0 where
-// the denominator is not positive (an isolated particle with epsilon = 0). Wall ghosts are solid: they add to
-// the density and move i's constraint (grad_i C_i) but do not move themselves. [m^2]
+// the denominator is not positive (an isolated particle with epsilon = 0). Wall ghosts are the mirror image
+// of the fluid (mirror_walls.h), and the constraint counts them as fluid particles: a ghost of j moves with
+// its own lambda_j (pbf_position_correction), so its |grad C_i|^2 is in the denominator as a neighbour's.
+// (Counted as solid, moving i alone, a wall particle's lambda was too strong for what the iteration then
+// did, and the column's layers beside the walls rattled: docs/results.md, issue 12.) Boundary particles
+// are solid. [m^2]
 SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                        const PbfConstants& params, int32_t i, float& density) {
   const KernelCoeffs& k = c.kernel;
@@ -112,9 +116,12 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
   for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
     const float mj = pbf_mass(c, p, i, j);
     rho += mj * poly6(k, r2);
-    if (r2 > 0.0f) grad_i += (mj / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    if (r2 <= 0.0f) return;
+    const Vec3 g = (mj / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    grad_i += g;
+    sum_grad2 += c.number_density ? length2(g) * (mi / c.fluids[p.fluid[j]].mass) : length2(g);
   });
-  // Boundary particles [AIA12] like the ghosts: Psi_b = rho0 V_b, solid.
+  // Boundary particles [AIA12]: Psi_b = rho0 V_b, solid (no lambda of their own; i moves alone).
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
     rho += rest_density * volume * poly6(k, r2);
     if (r2 > 0.0f) grad_i += (volume * spiky_grad_fac(k, sqrtf(r2))) * xib;
@@ -154,24 +161,23 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
   const float li = lambda[i];
   const FluidConstants& fi = c.fluids[p.fluid[i]];
   Vec3 dp{0.0f, 0.0f, 0.0f};
-  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
-    if (r2 <= 0.0f) return;
+  // The pair's weight of Spiky's gradient, for neighbour j or its wall ghost (the mirror image of j, with
+  // j's lambda: pbf_density_lambda).
+  const auto weight = [&](int32_t j, float r2) {
     const FluidConstants& fj = c.fluids[p.fluid[j]];
     const float scorr = pbf_scorr(k, params, r2) * k.h2;
-    const float weight =
-        c.number_density
-            ? fi.mass * li + fj.mass * (fj.mass / fi.mass) * (fi.rest_density / fj.rest_density) * lambda[j] +
-                  fj.mass * (2.0f * fi.rest_density / (fi.rest_density + fj.rest_density)) * scorr
-            : fj.mass * (li + lambda[j] + scorr);
-    dp += (weight * spiky_grad_fac(k, sqrtf(r2))) * xij;
+    return c.number_density
+               ? fi.mass * li + fj.mass * (fj.mass / fi.mass) * (fi.rest_density / fj.rest_density) * lambda[j] +
+                     fj.mass * (2.0f * fi.rest_density / (fi.rest_density + fj.rest_density)) * scorr
+               : fj.mass * (li + lambda[j] + scorr);
+  };
+  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
+    if (r2 > 0.0f) dp += (weight(j, r2) * spiky_grad_fac(k, sqrtf(r2))) * xij;
   });
-  // Wall ghosts push with the particle's own lambda (and s_corr): the solid has no constraint of its own.
   const Vec3 xi = p.pos[i];
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    if (r2 <= 0.0f) return;
-    const float s = li + pbf_scorr(k, params, r2) * k.h2;
-    dp += (pbf_mass(c, p, i, j) * s * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    if (r2 > 0.0f) dp += (weight(j, r2) * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
   const float rho0 = fi.rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {

@@ -196,6 +196,7 @@ struct DeviceArrays {
                         thrust::raw_pointer_cast(solver_error.data()),
                         thrust::raw_pointer_cast(delta_pos.data()),
                         thrust::raw_pointer_cast(omega.data()),
+                        thrust::raw_pointer_cast(pos_previous.data()),
                         thrust::raw_pointer_cast(support.data()),
                         thrust::raw_pointer_cast(surface_normal.data()),
                         thrust::raw_pointer_cast(curvature_own.data()),

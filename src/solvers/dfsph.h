@@ -38,6 +38,7 @@
 #include "../common/particle_view.h"
 #include "../common/sph_hd.h"
 #include "../common/viscous_limit.h"
+#include "chebyshev.h"
 #include "reduction.h"
 #include "wcsph.h"
 #include "surface_forces.h"
@@ -234,10 +235,10 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   const int32_t n = p.n;
   x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start, !kDensity});
   if (s.warm_start) x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, 0.0f});  // kept as it is
-  // [Wan15]'s weights: omega_1 = 1, omega_2 = 2 / (2 - rho^2), omega_k = 4 / (4 - rho^2 omega_(k-1)). With
-  // the projection at 0 the iteration is not linear, so a check whose mean residual grew restarts the weights
-  // at 1 (this iteration's corrections recomputed as plain Jacobi): without the restart a resting column at
-  // 2.6 ms steps blew up within 0.14 s, with it ran 1 s (measured, rho = 0.9).
+  // [Wan15]'s weights (chebyshev.h). With the projection at 0 the iteration is not linear, so a check whose
+  // mean residual grew restarts the weights at 1 (this iteration's corrections recomputed as plain Jacobi):
+  // without the restart a resting column at 2.6 ms steps blew up within 0.14 s, with it ran 1 s (measured,
+  // rho = 0.9).
   const float rho = s.chebyshev;
   float omega = 1.0f;
   const auto corrections = [&]() {
@@ -248,7 +249,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   int32_t it = 0;
   while (it < s.max_iterations && (it < min_iterations || error > double(tolerance))) {
     x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, keep});
-    if (rho > 0.0f) omega = omega == 1.0f ? 2.0f / (2.0f - rho * rho) : 4.0f / (4.0f - rho * rho * omega);
+    if (rho > 0.0f) omega = chebyshev_next_weight(rho, omega);
     corrections();
     ++it;
     if (it >= min_iterations && (it % s.check_every == 0 || it == s.max_iterations)) {

@@ -4,16 +4,20 @@
 //
 // A step ([MM13] algorithm 1; the order is kPbfPhases in backend.h):
 //   predict:          v += dt a_ext (gravity, the user force, the viscoelastic springs at x); x* = x + dt v,
-//                     then the scene's shapes
+//                     then the scene's shapes, and half a spacing off mirror walls
 //   build_grid:       the grid on x*, kept through the iterations (the paper finds neighbours once a step)
 //   constraint_solve: iterations of density rho(x*), lambda (eqs. 8-11), Delta p (eq. 14, with s_corr),
-//                     x* += Delta p and the shapes again; a last density for the error and what follows
+//                     x* += w Delta p (Chebyshev-extrapolated) and the shapes and walls again; a last
+//                     density for the error and what follows
 //   correct:          v = (x* - x) / dt
 //   forces:           vorticity confinement (eqs. 15, 16), the continuum surface force and XSPH (eq. 17) on v
 //   recycle
 // The old position x is pos_start (the shapes test the segment x -> x*). The neighbours are the pairs the grid
 // phase selected at x*, evaluated at the current positions (for_each_pbf_pair, src/common/pbf.h).
-// Each iteration is Jacobi: every lambda from the same positions, then every Delta p from the same lambdas.
+// Each iteration is Jacobi: every lambda from the same positions, then every Delta p from the same lambdas,
+// applied with the weight pbf.jacobi_weight and accelerated by Chebyshev's weights (pbf.chebyshev, [Wan15]):
+// together they keep the iteration from amplifying the short density waves that made the plain one rattle at
+// rest, and carry the floor's push farther up a column in the same iterations (docs/results.md, issue 12).
 // With pbf.density_tolerance > 0 the iterations stop early once the mean compression max(C, 0) is within it
 // (one reduction a check, deterministic: reduction.h); a step that uses every iteration above it is flagged.
 #pragma once
@@ -26,6 +30,7 @@
 #include "../common/pbf.h"
 #include "../common/sph_hd.h"
 #include "../common/springs.h"
+#include "chebyshev.h"
 #include "reduction.h"
 #include "surface_forces.h"
 #include "wcsph.h"
@@ -51,8 +56,9 @@ struct SpringAccelerationFn {
 };
 
 // v += dt a_ext, x* = x + dt v ([MM13] algorithm 1, lines 2-3), then the shapes (boundaries.h) on the
-// segment x -> x*; a_ext is gravity, the user force and, with springs, SpringAccelerationFn's acc. The
-// acceleration is kept in acc for the driver's diagnostics. Inlet particles (age < 0) move kinematically.
+// segment x -> x* (then KeepOffWallsFn); a_ext is gravity, the user force and, with springs,
+// SpringAccelerationFn's acc. The acceleration is kept in acc for the driver's
+// diagnostics. Inlet particles (age < 0) move kinematically.
 template <class C>
 struct PredictFn {
   C c;
@@ -119,17 +125,37 @@ struct CorrectionFn {
   }
 };
 
-// x* += Delta p ([MM13] algorithm 1, line 17), then collision with the shapes ("perform collision detection
-// and response", line 15): the segment from x, so a correction cannot carry a particle through a wall.
+// x* += w Delta p ([MM13] algorithm 1, line 17; w = pbf.jacobi_weight), extrapolated by the Chebyshev weight
+// omega from the iterate one iteration back ([Wan15]), which it stores in pos_previous for the next; then
+// collision with the shapes ("perform collision detection and response", line 15): the segment from x, so a
+// correction cannot carry a particle through a wall (then KeepOffWallsFn).
 template <class C>
 struct ApplyCorrectionFn {
   C c;
   ParticleView p;
   float dt;
+  float weight;  // pbf.jacobi_weight
+  float omega;   // Chebyshev weight ([Wan15], chebyshev.h); 1: none (the first iteration)
   SPH_KERNEL_FN void operator()(int32_t i) const {
     if (p.age[i] < 0.0f) return;
-    p.pos[i] += p.delta_pos[i];
+    const Vec3 x = p.pos[i];
+    Vec3 next = x + weight * p.delta_pos[i];
+    if (omega != 1.0f) next = omega * (next - p.pos_previous[i]) + p.pos_previous[i];
+    p.pos_previous[i] = x;
+    p.pos[i] = next;
     boundaries_of(*c, p, i, dt);
+  }
+};
+
+// Half a spacing off mirror walls (keep_off_mirror_walls says why), after PredictFn and ApplyCorrectionFn: a
+// loop of its own, as BoundaryParticleCollisionFn is (boundaries.h): inside theirs the walls' small arrays
+// took a 48-byte stack frame on the GPU (ptxas, sm_90).
+template <class C>
+struct KeepOffWallsFn {
+  C c;
+  ParticleView p;
+  SPH_KERNEL_FN void operator()(int32_t i) const {
+    if (p.age[i] >= 0.0f) keep_off_mirror_walls(*c, p.pos[i], (*c).mirror_wall_distance);
   }
 };
 
@@ -196,6 +222,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   const GridView g = x.grid();
   const int32_t n = p.n;
   int32_t it = 0;
+  float omega = 1.0f;
   for (;;) {
     // The last pass needs no lambda: then the density alone (the same bits).
     const bool last = it == s.iterations;
@@ -206,7 +233,9 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
       if (last || error <= double(s.density_tolerance)) break;
     }
     x.for_each(CorrectionFn<C>{x.constants(), g, p});
-    x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt});
+    omega = it == 0 ? 1.0f : chebyshev_next_weight(s.chebyshev, omega);
+    x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt, s.jacobi_weight, omega});
+    if (x.host_constants().mirror_walls) x.for_each(KeepOffWallsFn<C>{x.constants(), p});
     if (g.boundary.n > 0) x.for_each(BoundaryParticleCollisionFn{g, p, x.host_constants().kernel.h2});
     ++it;
   }
@@ -228,6 +257,7 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
         x.for_each(SpringAccelerationFn<C>{x.constants(), x.springs(), x.particles(), dt});
       }
       x.for_each(PredictFn<C>{x.constants(), x.particles(), dt, springs});
+      if (x.host_constants().mirror_walls) x.for_each(KeepOffWallsFn<C>{x.constants(), x.particles()});
       if (x.grid().boundary.n > 0)
         x.for_each(BoundaryParticleCollisionFn{x.grid(), x.particles(), x.host_constants().kernel.h2});
       return;

@@ -1,0 +1,17 @@
+// Chebyshev's semi-iterative acceleration of a Jacobi iteration ([Wan15]: H. Wang 2015, "A Chebyshev
+// semi-iterative approach for accelerating projective and position-based dynamics", ACM TOG 34(6)), shared by
+// DFSPH's pressure solves and PBF's constraint solve: iterate k is extrapolated from iterate k - 1 by the
+// weight omega_k, x_k = omega_k (x_jacobi - x_(k-2)) + x_(k-2) in the paper's notation.
+#pragma once
+
+namespace sph {
+
+// The weight after `previous` ([Wan15]): omega_1 = 1, omega_2 = 2 / (2 - rho^2), omega_k =
+// 4 / (4 - rho^2 omega_(k-1)); previous == 1 starts the sequence (omega_2). rho: the estimate of the plain
+// iteration's spectral radius, in [0, 1) (at 1 the weights grow without bound); rho = 0 gives 1 throughout,
+// plain Jacobi. Dimensionless.
+inline float chebyshev_next_weight(float rho, float previous) {
+  return previous == 1.0f ? 2.0f / (2.0f - rho * rho) : 4.0f / (4.0f - rho * rho * previous);
+}
+
+}  // namespace sph
