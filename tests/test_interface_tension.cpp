@@ -127,7 +127,7 @@ TEST_CASE("interface tension: the scene key is read by fluid name or index and c
                     Contains("interface_tension") && Contains("pbf"));
 }
 
-TEST_CASE("interface tension pulls a cube of one fluid inside another into a ball; without it the cube stays",
+TEST_CASE("interface tension pulls a cube of one fluid inside another into a ball, and without it the cube stays",
           "[surface_tension][interface]") {
   const double d = 0.005, sigma = 4.7, side = 0.04;
   sph::Simulation with(parse(cube_in_fluid(kTension)), cpu_factory(), 0.4);

@@ -317,7 +317,7 @@ TEST_CASE("PBF keeps a resting column's height at 4 ms steps", "[solvers][pbf]")
   }
 }
 
-TEST_CASE("PBF's weighted, Chebyshev-accelerated iterations bring a resting column to rest; plain Jacobi rattles",
+TEST_CASE("PBF's weighted, Chebyshev-accelerated iterations bring a resting column to rest, where plain Jacobi rattles",
           "[solvers][pbf]") {
   // Issue 12 (no drift at rest) and 15 (largest speed at rest): the paper's plain Jacobi iteration amplifies
   // short density waves (docs/results.md, "Why PBF rattles at rest"), and the column never settles. With the
