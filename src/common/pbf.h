@@ -102,7 +102,8 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
   Vec3 grad_i{0.0f, 0.0f, 0.0f};  // grad_i C_i [1/m]
   float sum_grad2 = 0.0f;         // sum_j |grad_j C_i|^2 [1/m^2]
   const float mi = c.fluids[p.fluid[i]].mass;
-  for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
+  // Neighbour j, or its wall ghost, at x_i - x_j = xij.
+  const auto add = [&](int32_t j, Vec3 xij, float r2) {
     const float mj = pbf_mass(c, p, i, j);
     rho += mj * poly6(k, r2);
     if (r2 <= 0.0f) return;
@@ -110,17 +111,11 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
     grad_i += g;
     // Number density: (m_i / m_j) |grad_j C_i|^2, the mass-weighted projection's (above).
     sum_grad2 += c.number_density ? length2(g) * (mi / c.fluids[p.fluid[j]].mass) : length2(g);
-  });
+  };
+  for_each_pbf_pair(c, grid, p, i, add);
   const Vec3 xi = p.pos[i];
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
-  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    const float mj = pbf_mass(c, p, i, j);
-    rho += mj * poly6(k, r2);
-    if (r2 <= 0.0f) return;
-    const Vec3 g = (mj / rest_density * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
-    grad_i += g;
-    sum_grad2 += c.number_density ? length2(g) * (mi / c.fluids[p.fluid[j]].mass) : length2(g);
-  });
+  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) { add(j, xi - xg, r2); });
   // Boundary particles [AIA12]: Psi_b = rho0 V_b, solid (no lambda of their own; i moves alone).
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
     rho += rest_density * volume * poly6(k, r2);
