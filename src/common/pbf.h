@@ -158,13 +158,17 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
   Vec3 dp{0.0f, 0.0f, 0.0f};
   // The pair's weight of Spiky's gradient, for neighbour j or its wall ghost (the mirror image of j, with
   // j's lambda: pbf_density_lambda).
+  // s_corr's term is skipped where k = 0 (the default): it would add -0 to every weight.
+  const bool scorr_on = params.scorr_k != 0.0f;
   const auto weight = [&](int32_t j, float r2) {
     const FluidConstants& fj = c.fluids[p.fluid[j]];
-    const float scorr = pbf_scorr(k, params, r2) * k.h2;
-    return c.number_density
-               ? fi.mass * li + fj.mass * (fj.mass / fi.mass) * (fi.rest_density / fj.rest_density) * lambda[j] +
-                     fj.mass * (2.0f * fi.rest_density / (fi.rest_density + fj.rest_density)) * scorr
-               : fj.mass * (li + lambda[j] + scorr);
+    if (c.number_density) {
+      const float w = fi.mass * li + fj.mass * (fj.mass / fi.mass) * (fi.rest_density / fj.rest_density) * lambda[j];
+      return scorr_on ? w + fj.mass * (2.0f * fi.rest_density / (fi.rest_density + fj.rest_density)) *
+                                (pbf_scorr(k, params, r2) * k.h2)
+                      : w;
+    }
+    return fj.mass * (scorr_on ? li + lambda[j] + pbf_scorr(k, params, r2) * k.h2 : li + lambda[j]);
   };
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 > 0.0f) dp += (weight(j, r2) * spiky_grad_fac(k, sqrtf(r2))) * xij;
@@ -177,7 +181,7 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
   const float rho0 = fi.rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
     if (r2 <= 0.0f) return;
-    const float s = li + pbf_scorr(k, params, r2) * k.h2;
+    const float s = scorr_on ? li + pbf_scorr(k, params, r2) * k.h2 : li;
     dp += (rho0 * volume * s * spiky_grad_fac(k, sqrtf(r2))) * xib;
   });
   return (1.0f / c.fluids[p.fluid[i]].rest_density) * dp;
