@@ -88,11 +88,12 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
     report.push_back("note: solver \"" + name + "\" ignores integrator = \"" + integrator_name(scene.integrator) +
                      "\" (it integrates its own way)");
   if (scene.solver != Solver::Pbf) return;
-  // Measured on dam_break (docs/results.md, issue 12): mirror_walls.h, keep_off_mirror_walls, says why.
-  if (!scene.mirror_walls)
-    report.push_back("note: under solver \"pbf\" penalty walls (sph.walls = \"penalty\") let a front pile particles onto "
-                     "a wall, where nothing pushes them off: the 16k dam break blew up where its front met the far wall, "
-                     "at 4 and at 2 ms steps, and ran with sph.walls = \"mirror\" (docs/results.md)");
+  // Measured on dam_break (docs/results.md, issue 12); the loader makes the change (scene_loader.cpp).
+  if (scene.penalty_walls_as_mirror)
+    report.push_back("note: solver \"pbf\" runs sph.walls = \"penalty\" as sph.walls = \"mirror\": it has no wall force, "
+                     "and with its collision alone a front piles particles onto a wall, where nothing pushes them off "
+                     "(the 16k dam break blew up where its front met the far wall, at 4 and at 2 ms steps; "
+                     "docs/results.md)");
   for (std::size_t i = 0; i < scene.fluids.size(); ++i) {
     const FluidSpec& f = scene.fluids[i];
     std::string ignored;

@@ -192,6 +192,9 @@ struct Scene {
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)
   bool boundary_particles = false;     // sph.walls: "particles" (boundary_particles.h, [AIA12])
+  // sph.walls = "penalty" under solver "pbf", run as mirror walls (mirror_walls is then true): PBF has no wall
+  // force to make penalty walls of (scene_loader.cpp says why; a set-up note tells the user).
+  bool penalty_walls_as_mirror = false;
   // sph.multiphase: "number_density" (Solenthaler & Pajarola 2008; density.h, forces.h), the default, or
   // "mass_density" (the plain sums of the neighbours' masses, which fail beyond a density ratio of about
   // 1.25 between touching fluids: issue 15). Only fluids of different particle mass tell them apart.
