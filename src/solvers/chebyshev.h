@@ -4,6 +4,8 @@
 // weight omega_k, x_k = omega_k (x_jacobi - x_(k-2)) + x_(k-2) in the paper's notation.
 #pragma once
 
+#include "../common/sph_hd.h"
+
 namespace sph {
 
 // The weight after `previous` ([Wan15]): omega_1 = 1, omega_2 = 2 / (2 - rho^2), omega_k =
@@ -12,6 +14,14 @@ namespace sph {
 // plain Jacobi. Dimensionless.
 inline float chebyshev_next_weight(float rho, float previous) {
   return previous == 1.0f ? 2.0f / (2.0f - rho * rho) : 4.0f / (4.0f - rho * rho * previous);
+}
+
+// The extrapolated iterate ([Wan15]): omega (next - previous) + previous, from the Jacobi iterate `next` and
+// the iterate one iteration back, `previous`; omega = 1 (the first iteration, or rho = 0) gives next itself.
+// T: float (DFSPH's stiffnesses [m^2/s^2]) or Vec3 (PBF's positions [m]).
+template <class T>
+SPH_HD inline T chebyshev_extrapolate(T next, T previous, float omega) {
+  return omega != 1.0f ? omega * (next - previous) + previous : next;
 }
 
 }  // namespace sph

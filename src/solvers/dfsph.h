@@ -151,8 +151,7 @@ struct ErrorFn {
                                                : dfsph_divergence_stiffness(excess, p.alpha[i], dt));
     const float total = kept[i] * scale / p.density[i];
     // [Wan15]: the Jacobi iterate total + increment, extrapolated from the one before (prev) by omega.
-    float next = total + increment;
-    if (omega != 1.0f) next = omega * (next - prev[i]) + prev[i];
+    float next = chebyshev_extrapolate(total + increment, prev[i], omega);
     prev[i] = total;
     next = next > 0.0f ? next : 0.0f;
     p.kappa[i] = next - total;

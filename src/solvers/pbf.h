@@ -139,10 +139,8 @@ struct ApplyCorrectionFn {
   SPH_KERNEL_FN void operator()(int32_t i) const {
     if (p.age[i] < 0.0f) return;
     const Vec3 x = p.pos[i];
-    Vec3 next = x + weight * p.delta_pos[i];
-    if (omega != 1.0f) next = omega * (next - p.pos_previous[i]) + p.pos_previous[i];
+    p.pos[i] = chebyshev_extrapolate(x + weight * p.delta_pos[i], p.pos_previous[i], omega);
     p.pos_previous[i] = x;
-    p.pos[i] = next;
     boundaries_of(*c, p, i, dt);
   }
 };
