@@ -25,9 +25,14 @@ namespace sph {
 // kPbfListReach for PBF, whose iterations move the particles after the grid phase. PBF's loops select their
 // pairs by this radius at the grid phase's positions (pos_mass, which PBF leaves as the grid wrote them) and
 // then keep those within h at the current positions (src/common/pbf.h, for_each_pbf_pair): the same pairs on
-// every back end, lists or search, and the margin of 0.2 h keeps the pairs that come within h while the
-// iterations move them (with a margin of 0, pairs were missed and a resting column blew up in 0.85 s).
-constexpr float kPbfListReach = 1.2f;
+// every back end, lists or search, and the margin keeps the pairs that come within h while the iterations
+// move them. With a margin of 0 pairs were missed and a resting column blew up in 0.85 s. At 0.1 h the resting
+// column and two_layers keep every bit of 0.2 h's runs (no pair comes in from beyond 1.1 h there); the 16k dam
+// break's differ from its eighth step on (a pair entering within h from between 1.1 h and 1.2 h), its surge
+// front within 0.25 mm of 0.2 h's over 1 s, its largest mean compression 7.11% against 7.09%; and the constraint
+// solve is about 20% cheaper, with (1.1 / 1.2)^3, a quarter, fewer candidates a loop (docs/results.md,
+// "PBF's walls and cost").
+constexpr float kPbfListReach = 1.1f;
 SPH_HD inline float neighbour_reach(const SimConstants& c) { return c.solver == Solver::Pbf ? kPbfListReach : 1.0f; }
 SPH_HD inline float neighbour_radius2(const SimConstants& c) {
   const float reach = neighbour_reach(c);

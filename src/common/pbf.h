@@ -35,9 +35,9 @@ namespace sph {
 
 
 // The neighbours as [MM13] finds them, once a step (algorithm 1, line 6): the pairs the grid phase selected
-// by the list radius (neighbour_list.h, neighbour_radius2: 1.2 h) at its positions, pos_mass, which the
-// solver leaves as the grid phase wrote them; in the search's order, the same on every back end (the CPU
-// builds read the lists). Each is evaluated at the current positions p.pos, while within h:
+// by the list radius (neighbour_list.h, neighbour_radius2: kPbfListReach h, 1.1 h) at its positions,
+// pos_mass, which the solver leaves as the grid phase wrote them; in the search's order, the same on every
+// back end (the CPU builds read the lists). Each is evaluated at the current positions p.pos, while within h:
 // f(j, x_i - x_j, r2) with r2 < h^2.
 template <class F>
 SPH_HD inline void for_each_pbf_pair(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i, F&& f) {

@@ -193,7 +193,7 @@ struct VelocityCorrectionFn {
 
 // The grid's copy of the positions, pos_mass (written at x* by the grid phase), moved to where the
 // constraint iterations left the particles: the continuum surface force's loops read it (surface_forces.h).
-// The neighbour lists stay those of x* (pairs within 1.2 h), as for the iterations.
+// The neighbour lists stay those of x* (pairs within kPbfListReach h), as for the iterations.
 struct SyncGridPositionsFn {
   ParticleView p;
   SPH_HD void operator()(int32_t i) const { p.pos_mass[i] = with_w(p.pos[i], p.pos_mass[i].w); }
