@@ -87,16 +87,6 @@ TEST_CASE("device solvers: PBF with mirror walls", "[device][solvers]") {
   check_solver_case(scene, 30);
 }
 
-TEST_CASE("device solvers: PBF with one kernel, the cubic spline, with vorticity confinement and s_corr", "[device][solvers]") {
-  // pbf_kernel and pbf_grad_fac in every sum of PBF (src/common/pbf.h), s_corr's ratio and XSPH's weight included.
-  const sph::Scene scene = scene_file("hydrostatic_tank.json", {"resolution.particles_across=8", "solver=pbf",
-                                                                "sph.kernel=cubic_spline", "time_step.mode=fixed",
-                                                                "time_step.dt=0.004", "pbf.vorticity_epsilon=0.01",
-                                                                "pbf.scorr_k=0.01"});
-  REQUIRE(scene.pbf.jacobi_weight == sph::kPbfCubicSplineJacobiWeight);
-  check_solver_case(scene, 30);
-}
-
 TEST_CASE("device solvers: every solver with boundary particles", "[device][solvers][boundary_particles]") {
   // Issue 13: the boundary particles' sums (density, pressure and friction for WCSPH, alpha, rate and kappa for
   // DFSPH, lambda and Delta p for PBF) bit for bit. slip 0.5 so that the friction term runs.
@@ -159,14 +149,6 @@ TEST_CASE("device solvers: PBF with two fluids of density ratio 10 in the number
   // Mirror walls, the light fluid's corrections weighted by inverse mass (src/common/pbf.h).
   const sph::Scene scene = scene_file("two_layers.json", {"resolution.particles_across=5", "solver=pbf"});
   REQUIRE(scene.number_density);
-  check_solver_case(scene, 30);
-}
-
-TEST_CASE("device solvers: PBF with the cubic spline, two fluids of density ratio 10 and boundary particles",
-          "[device][solvers][multiphase][boundary_particles]") {
-  const sph::Scene scene = scene_file("two_layers.json", {"resolution.particles_across=5", "solver=pbf",
-                                                          "sph.kernel=cubic_spline", "sph.walls=particles"});
-  REQUIRE(scene.boundary_particles);
   check_solver_case(scene, 30);
 }
 

@@ -193,18 +193,18 @@ TEST_CASE("PBF s_corr is negative, -k at dq and zero at and beyond h", "[pbf]") 
     const float hf = float(h);
     const float dq = params.scorr_dq * hf;
     INFO("h = " << h);
-    CHECK(sph::pbf_scorr(k, false, params, dq * dq) == Approx(-params.scorr_k).epsilon(1e-5));
+    CHECK(sph::pbf_scorr(k, params, dq * dq) == Approx(-params.scorr_k).epsilon(1e-5));
     float previous = -1e30f;
     for (float q = 0.0f; q < 0.999f; q += 0.05f) {
-      const float s = sph::pbf_scorr(k, false, params, (q * hf) * (q * hf));
+      const float s = sph::pbf_scorr(k, params, (q * hf) * (q * hf));
       CHECK(s < 0.0f);
       CHECK(s > previous);  // weaker with distance
       previous = s;
     }
     // A neighbour at the rest spacing (about h / 2) gets about 5% of k: (0.75 / 0.96)^12.
     const double at_half_h = -params.scorr_k * std::pow(0.75 / 0.96, 12);
-    CHECK(sph::pbf_scorr(k, false, params, 0.25f * hf * hf) == Approx(at_half_h).epsilon(1e-4));
-    for (float r : {hf, 1.0001f * hf, 2.0f * hf}) CHECK(sph::pbf_scorr(k, false, params, r * r) == 0.0f);
+    CHECK(sph::pbf_scorr(k, params, 0.25f * hf * hf) == Approx(at_half_h).epsilon(1e-4));
+    for (float r : {hf, 1.0001f * hf, 2.0f * hf}) CHECK(sph::pbf_scorr(k, params, r * r) == 0.0f);
   }
 }
 

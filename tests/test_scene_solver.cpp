@@ -4,7 +4,6 @@
 // file, the key path and what is allowed.
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -87,24 +86,6 @@ TEST_CASE("loader: scene solver defaults to WCSPH, and the blocks to the papers'
   check_dfsph_equal(parse_solver("dfsph", R"("dfsph": {})").dfsph, sph::dfsph_defaults());
   for (const sph::Solver m : {sph::Solver::Wcsph, sph::Solver::Dfsph, sph::Solver::Pbf})
     REQUIRE(parse_solver(sph::solver_name(m)).solver == m);
-}
-
-TEST_CASE("loader: PBF with the cubic spline takes its own Jacobi weight unless one is given", "[loader][solver]") {
-  // params.h, kPbfCubicSplineJacobiWeight: the pair's 0.7 boils the dam break under one kernel.
-  CHECK(parse(SceneText{}, {"solver=pbf", "sph.kernel=cubic_spline"}).pbf.jacobi_weight == sph::kPbfCubicSplineJacobiWeight);
-  CHECK(parse(SceneText{}, {"solver=pbf", "sph.kernel=cubic_spline", "pbf.jacobi_weight=0.5"}).pbf.jacobi_weight == 0.5f);
-  CHECK(parse(SceneText{}, {"solver=pbf"}).pbf.jacobi_weight == sph::pbf_defaults().jacobi_weight);
-  CHECK(parse(SceneText{}, {"solver=pbf", "sph.kernel=poly6_spiky"}).pbf.jacobi_weight == sph::pbf_defaults().jacobi_weight);
-  // Under PBF the kernel is used, so no note says it is ignored; under DFSPH one does.
-  const auto kernel_ignored = [](const std::string& solver) {
-    const sph::Setup s = sph::create_setup(parse(SceneText{}, {"solver=" + solver, "sph.kernel=cubic_spline"}), 0.1);
-    return std::any_of(s.report.begin(), s.report.end(),
-                       [](const std::string& line) { return line.find("ignores sph.kernel") != std::string::npos; });
-  };
-  CHECK_FALSE(kernel_ignored("pbf"));
-  CHECK(kernel_ignored("dfsph"));
-  CHECK(sph::create_setup(parse(SceneText{}, {"solver=pbf", "sph.kernel=cubic_spline"}), 0.1).constants.cubic_spline == 1);
-  CHECK(sph::create_setup(parse(SceneText{}, {"solver=dfsph", "sph.kernel=cubic_spline"}), 0.1).constants.cubic_spline == 0);
 }
 
 TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {

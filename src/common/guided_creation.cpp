@@ -74,15 +74,16 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
                                        [](const FluidSpec& f) { return f.surface_tension > 0.0; });
   if (scene.solver == Solver::Wcsph) {
     // Not ignored, but known to be off: docs/results.md, "One kernel for WCSPH".
-    if (csf_tension && !cubic_spline_kernel(scene))
+    if (csf_tension && !wcsph_cubic_spline(scene))
       report.push_back("note: under WCSPH with sph.kernel = \"poly6_spiky\" the continuum surface force holds a drop's "
                        "pressure 15 to 32% above Laplace's 2 sigma / R; sph.kernel = \"cubic_spline\" holds it within 10% "
                        "(docs/results.md)");
     return;
   }
   const std::string name = solver_name(scene.solver);
-  if (scene.kernel_set && scene.solver == Solver::Dfsph)
-    report.push_back("note: solver \"dfsph\" ignores sph.kernel (it always uses the cubic spline)");
+  if (scene.kernel_set)
+    report.push_back("note: solver \"" + name + "\" ignores sph.kernel (it is WCSPH's; " +
+                     (scene.solver == Solver::Dfsph ? "DFSPH always uses the cubic spline" : "PBF always uses Poly6 with Spiky") + ")");
   if (scene.integrator != Integrator::ModifiedVelocityVerlet)
     report.push_back("note: solver \"" + name + "\" ignores integrator = \"" + integrator_name(scene.integrator) +
                      "\" (it integrates its own way)");
@@ -122,30 +123,19 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
           "fluids under PBF\")";
     report.push_back(os.str());
   }
-  // Measured on rayleigh_taylor with 10 iterations (tests/test_multiphase.cpp): under one kernel the interface
-  // grew as under the pair until about 1.9 times its first amplitude (0.13 s), then stopped near 2.1.
-  if (densities_differ && cubic_spline_kernel(scene))
-    report.push_back("note: under solver \"pbf\" with sph.kernel = \"cubic_spline\" a heavy fluid over a light one "
-                     "stopped growing at about twice its first perturbation (rayleigh_taylor, 10 iterations), where "
-                     "sph.kernel = \"poly6_spiky\" grew as linear theory says; layers at rest stay quieter with it "
-                     "(two_layers; docs/results.md, \"One kernel for PBF\")");
   // Measured on drop_oscillation (docs/results.md, "Surface tension under PBF"): at the paper's XSPH a
   // drop threw particles off, and so it did with the default weighted, Chebyshev-accelerated iteration
   // (drops of 10 to 18 across shed 10 particles in all, against 1 with the paper's plain iteration and 1 with
-  // the weight alone); the tests hold the drop with the plain iteration. With the cubic spline (sph.kernel) the
-  // plain iteration is unstable (params.h, kPbfCubicSplineJacobiWeight), and a drop of 16 across shed particles
-  // at its own weight, with or without the Chebyshev weights (docs/results.md, "One kernel for PBF").
-  const bool cubic = cubic_spline_kernel(scene);
+  // the weight alone); the tests hold the drop with the plain iteration.
   const bool plain = scene.pbf.jacobi_weight == 1.0f && scene.pbf.chebyshev == 0.0f;
-  if (csf_tension && (cubic || scene.pbf.xsph_c < kPbfCsfXsph || !plain)) {
+  if (csf_tension && (scene.pbf.xsph_c < kPbfCsfXsph || !plain)) {
     std::ostringstream os;
     os << "note: under solver \"pbf\" the continuum surface force held a 0.1 m drop together, in the tests, with "
-       << "pbf.xsph >= " << kPbfCsfXsph << " (PBF's only viscosity), sph.kernel = \"poly6_spiky\" and the paper's plain "
-       << "iteration (pbf.jacobi_weight = 1, pbf.chebyshev = 0); here pbf.xsph = " << scene.pbf.xsph_c
-       << ", sph.kernel = \"" << (cubic ? "cubic_spline" : "poly6_spiky") << "\", pbf.jacobi_weight = "
+       << "pbf.xsph >= " << kPbfCsfXsph << " (PBF's only viscosity) and the paper's plain iteration "
+       << "(pbf.jacobi_weight = 1, pbf.chebyshev = 0); here pbf.xsph = " << scene.pbf.xsph_c << ", pbf.jacobi_weight = "
        << scene.pbf.jacobi_weight << ", pbf.chebyshev = " << scene.pbf.chebyshev
-       << ": a lower pbf.xsph, the Chebyshev weights or the cubic spline threw particles off (docs/results.md, "
-          "\"Surface tension under PBF\")";
+       << ": a lower pbf.xsph or the Chebyshev weights threw particles off (docs/results.md, \"Surface tension under "
+          "PBF\")";
     report.push_back(os.str());
   }
 }
@@ -406,9 +396,9 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
                                 metres(scene.emitters[i].radius) + " m at spacing " + metres(s.spacing) + " m)");
 
   // The kernel sum over the lattice depends on h / d only: computed at d = 1 it cannot overflow.
-  // With the density kernel of WCSPH's or PBF's sums, so that a lattice starts at rho0. DFSPH keeps Poly6's (params.h,
+  // With WCSPH's density kernel, so that its lattice start reads rho0. DFSPH keeps Poly6's (params.h,
   // density_cubic_spline, says why).
-  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing, cubic_spline_kernel(scene));
+  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing, wcsph_cubic_spline(scene));
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
   check_incompressible_step(scene, s.spacing);
   check_surface_tension(scene, s.h);
@@ -423,7 +413,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   c.density = scene.density;
   c.eos = scene.eos;
   c.pressure_form = scene.pressure_form;
-  c.cubic_spline = cubic_spline_kernel(scene) ? 1 : 0;
+  c.cubic_spline = wcsph_cubic_spline(scene) ? 1 : 0;
   c.csf_curvature_spread = scene.csf_curvature_limit ? kCsfCurvatureSpread : -1.0f;
   c.viscosity = scene.viscosity;
   c.integrator = scene.integrator;

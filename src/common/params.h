@@ -79,7 +79,6 @@ struct PbfConstants {
   // Weighted Jacobi: each iteration applies this share of Delta p, in (0, 1]. Poly6's density read against
   // Spiky's correction overshoots the short density waves (G(q) up to 2.8, docs/results.md "Why PBF rattles
   // at rest"); 0.7 brings those inside the stable band that the Chebyshev weights below can then widen.
-  // With the cubic spline (sph.kernel) the default is kPbfCubicSplineJacobiWeight instead.
   float jacobi_weight;
   // Chebyshev acceleration of the iterations ([Wan15], solvers/chebyshev.h): the estimate rho of the weighted
   // iteration's spectral radius, in [0, 0.99]; 0: plain (weighted) Jacobi.
@@ -97,13 +96,6 @@ constexpr DfsphConstants dfsph_defaults() { return DfsphConstants{1e-4f, 1e-3f, 
 // v = Delta x / dt that is a speed growing as the step shrinks, and a resting column with k = 0.1 blew up
 // within 0.015 s at dt = 0.25 ms (measured; tests/test_solvers.cpp keeps the default stable there).
 constexpr PbfConstants pbf_defaults() { return PbfConstants{0.1f, 0.0f, 4, 0.2f, 1, 0.01f, 0.0f, 4, 0.0f, 0.7f, 0.85f}; }
-
-// PBF's default pbf.jacobi_weight with sph.kernel = "cubic_spline". One kernel has no growing waves (G(q) >= 0),
-// but its G(q) reaches 2.76 on the lattice and 2.84 / 2.97 at 6% / 17% compression (G(q): docs/results.md,
-// "One kernel for PBF"), and a weight w is stable only while w G < 2: at 0.7 the 16k dam break at 4 ms
-// boiled from 0.12 s on, starting at its column's foot, where it is compressed most; at 0.6 a resting
-// two_layers moved at up to 0.103 m/s, at 0.65 at 0.090 m/s, and the dam break ran (measured).
-constexpr float kPbfCubicSplineJacobiWeight = 0.65f;
 
 enum class Integrator : int32_t {
   ExplicitEuler,            // thesis eq. 2.29, kept to show where it fails
@@ -201,10 +193,9 @@ struct SimConstants {
   // Half the particle spacing [m]: under PBF the nearest a particle's centre comes to a mirror wall
   // (mirror_walls.h, keep_off_mirror_walls), where its image is one spacing away as in the lattice.
   float mirror_wall_distance;
-  // 1: WCSPH or PBF with sph.kernel = cubic_spline: WCSPH's density (summation and continuity), pressure,
-  // viscosity and XSPH terms, and every sum of PBF (pbf.h, pbf_kernel, pbf_grad_fac), use the cubic spline in
-  // place of Poly6 and Spiky (kernels.h, density_kernel, gradient_dwdr). 0 under DFSPH, whose sums always
-  // use the cubic spline (dfsph.h).
+  // 1: WCSPH with sph.kernel = cubic_spline: its density (summation and continuity), pressure, viscosity and
+  // XSPH terms use the cubic spline in place of Poly6 and Spiky (kernels.h, density_kernel, gradient_dwdr).
+  // 0 under DFSPH and PBF, whose own sums have their own kernels (dfsph.h, pbf.h).
   int32_t cubic_spline;
   // The continuum surface force's limit on a particle's curvature, relative to its neighbours' mean
   // (surface_tension_csf.h, csf_limited_curvature): kCsfCurvatureSpread, or -1 for none (Scene's

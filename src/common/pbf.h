@@ -4,11 +4,8 @@
 // (lambda, vorticity) are passed as raw pointers, not ParticleState fields. Each returns its value.
 // The paper's text is not among the seeds: its equation numbers below are recalled, to check against it.
 //
-// Kernels as the paper: Poly6 for densities and weights, Spiky for gradients (kernels.h, support h), or with
-// sph.kernel = "cubic_spline" (SimConstants::cubic_spline) the cubic spline for both (pbf_kernel,
-// pbf_grad_fac): the paper's pair corrects a Poly6 density along Spiky's gradient, not along the density's own
-// gradient, and some short density waves then grow a little in every iteration (docs/results.md, "Why PBF
-// rattles at rest"); with one kernel none does. The density rho_i = sum_j m_j W (pbf_density). The paper takes unit masses; here every sum carries m_j,
+// Kernels as the paper: Poly6 for densities and weights, Spiky for gradients (kernels.h, support h). The
+// density rho_i = sum_j m_j W_poly6 (pbf_density). The paper takes unit masses; here every sum carries m_j,
 // written so that the corrections conserve linear momentum for any masses (sum_i m_i Delta p_i = 0).
 //
 // Several fluids (SimConstants::number_density, set where the fluids' masses differ; [SP08] as density.h and
@@ -61,23 +58,12 @@ SPH_HD inline void for_each_pbf_ghost(const SimConstants& c, const GridView& gri
   for_each_ghost_of(c, grid, p.pos_mass, neighbour_radius2(c), p.pos, walls, i, f);
 }
 
-// The density kernel W(r) of PBF's sums, r^2 = r2 < h^2: Poly6, or the cubic spline (header). [1/m^3]
-SPH_HD_ALWAYS_INLINE float pbf_kernel(const SimConstants& c, float r2) {
-  return density_kernel(c.kernel, c.cubic_spline != 0, r2);
-}
-
-// grad W = pbf_grad_fac * x_ij for a pair at r^2 = r2, 0 < r2 < h^2: Spiky's, or the cubic spline's (header). [1/m^5]
-SPH_HD_ALWAYS_INLINE float pbf_grad_fac(const SimConstants& c, float r2) {
-  const float r = sqrtf(r2);
-  return gradient_dwdr(c.kernel, c.cubic_spline != 0, r) / r;
-}
-
 // Neighbour (or wall ghost of) j's mass in particle i's sums: m_j, or m_i in the number-density form (above).
 SPH_HD_ALWAYS_INLINE float pbf_mass(const SimConstants& c, const ParticleView& p, int32_t i, int32_t j) {
   return c.fluids[p.fluid[c.number_density ? i : j]].mass;
 }
 
-// rho_i = sum_j m_j W(x_i - x_j) (pbf_kernel; m_i with several fluids: pbf_mass), the particle itself included, at the positions p.pos (the predicted
+// rho_i = sum_j m_j W_poly6(x_i - x_j) (m_i with several fluids: pbf_mass), the particle itself included, at the positions p.pos (the predicted
 // x* while the solver iterates): the density the constraint reads ([MM13] eq. 2). With mirror walls the
 // neighbours' wall ghosts (mirror_walls.h, for_each_pbf_ghost) add their
 // mass, so a particle at a wall is not read as under-dense. [kg/m^3]
@@ -85,12 +71,12 @@ SPH_HD inline float pbf_density(const SimConstants& c, const GridView& grid, con
   const KernelCoeffs& k = c.kernel;
   float rho = 0.0f;
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3, float r2) {
-    rho += pbf_mass(c, p, i, j) * pbf_kernel(c, r2);
+    rho += pbf_mass(c, p, i, j) * poly6(k, r2);
   });
   const NearWalls walls = c.mirror_walls ? near_walls(c, p.pos[i]) : NearWalls{};
-  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) { rho += pbf_mass(c, p, i, j) * pbf_kernel(c, r2); });
+  for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) { rho += pbf_mass(c, p, i, j) * poly6(k, r2); });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
-  for_each_boundary(grid.boundary, p.pos[i], k.h2, [&](int32_t, Vec3, float r2, float volume) { rho += rho0 * volume * pbf_kernel(c, r2); });
+  for_each_boundary(grid.boundary, p.pos[i], k.h2, [&](int32_t, Vec3, float r2, float volume) { rho += rho0 * volume * poly6(k, r2); });
   return rho;
 }
 
@@ -119,9 +105,9 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
   // Neighbour j, or its wall ghost, at x_i - x_j = xij.
   const auto add = [&](int32_t j, Vec3 xij, float r2) {
     const float mj = pbf_mass(c, p, i, j);
-    rho += mj * pbf_kernel(c, r2);
+    rho += mj * poly6(k, r2);
     if (r2 <= 0.0f) return;
-    const Vec3 g = (mj / rest_density * pbf_grad_fac(c, r2)) * xij;
+    const Vec3 g = (mj / rest_density * spiky_grad_fac(k, sqrtf(r2))) * xij;
     grad_i += g;
     // Number density: (m_i / m_j) |grad_j C_i|^2, the mass-weighted projection's (above).
     sum_grad2 += c.number_density ? length2(g) * (mi / c.fluids[p.fluid[j]].mass) : length2(g);
@@ -132,8 +118,8 @@ SPH_HD inline float pbf_density_lambda(const SimConstants& c, const GridView& gr
   for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) { add(j, xi - xg, r2); });
   // Boundary particles [AIA12]: Psi_b = rho0 V_b, solid (no lambda of their own; i moves alone).
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
-    rho += rest_density * volume * pbf_kernel(c, r2);
-    if (r2 > 0.0f) grad_i += (volume * pbf_grad_fac(c, r2)) * xib;
+    rho += rest_density * volume * poly6(k, r2);
+    if (r2 > 0.0f) grad_i += (volume * spiky_grad_fac(k, sqrtf(r2))) * xib;
   });
   density = rho;
   const float denominator = sum_grad2 + length2(grad_i) + params.relaxation / k.h2;
@@ -149,18 +135,17 @@ SPH_HD inline float pbf_lambda(const SimConstants& c, const GridView& grid, cons
   return pbf_density_lambda(c, grid, p, params, i, density);
 }
 
-// [MM13] eq. 13: s_corr = -k (W(r) / W(dq))^n, W the density kernel (Poly6, or the cubic spline where
-// `cubic`: pbf_kernel), r^2 = |x_ij|^2. Dimensionless as in the paper; negative inside the support, -k at
-// r = dq, 0 at and beyond h.
-SPH_HD inline float pbf_scorr(const KernelCoeffs& k, bool cubic, const PbfConstants& params, float r2) {
+// [MM13] eq. 13: s_corr = -k (W(r) / W(dq))^n, W = Poly6, r^2 = |x_ij|^2. Dimensionless as in the paper;
+// negative inside the support, -k at r = dq, 0 at and beyond h.
+SPH_HD inline float pbf_scorr(const KernelCoeffs& k, const PbfConstants& params, float r2) {
   const float dq = params.scorr_dq * k.h;
-  const float ratio = density_kernel(k, cubic, r2) / density_kernel(k, cubic, dq * dq);
+  const float ratio = poly6(k, r2) / poly6(k, dq * dq);
   float power = 1.0f;
   for (int32_t e = 0; e < params.scorr_n; ++e) power *= ratio;
   return -params.scorr_k * power;
 }
 
-// [MM13] eq. 14: Delta p_i = (1 / rho0) sum_j m_j (lambda_i + lambda_j + s_corr h^2) grad W_ij (pbf_grad_fac),
+// [MM13] eq. 14: Delta p_i = (1 / rho0) sum_j m_j (lambda_i + lambda_j + s_corr h^2) grad W_ij (Spiky),
 // lambda from pbf_lambda. The pair (i, j) moves i by m_j X and j by -m_i X for the same X: equal and opposite
 // momentum, sum_i m_i Delta p_i = 0. Several fluids (above): the pair's weight is m_i lambda_i + (m_j^2 / m_i)
 // (rho0_i / rho0_j) lambda_j, and s_corr's m_j 2 rho0_i / (rho0_i + rho0_j), so that m_i Delta p_i of the pair
@@ -171,7 +156,7 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
   const float li = lambda[i];
   const FluidConstants& fi = c.fluids[p.fluid[i]];
   Vec3 dp{0.0f, 0.0f, 0.0f};
-  // The pair's weight of the gradient, for neighbour j or its wall ghost (the mirror image of j, with
+  // The pair's weight of Spiky's gradient, for neighbour j or its wall ghost (the mirror image of j, with
   // j's lambda: pbf_density_lambda).
   // s_corr's term is skipped where k = 0 (the default): it would add -0 to every weight.
   const bool scorr_on = params.scorr_k != 0.0f;
@@ -180,29 +165,29 @@ SPH_HD inline Vec3 pbf_position_correction(const SimConstants& c, const GridView
     if (c.number_density) {
       const float w = fi.mass * li + fj.mass * (fj.mass / fi.mass) * (fi.rest_density / fj.rest_density) * lambda[j];
       return scorr_on ? w + fj.mass * (2.0f * fi.rest_density / (fi.rest_density + fj.rest_density)) *
-                                (pbf_scorr(k, c.cubic_spline != 0, params, r2) * k.h2)
+                                (pbf_scorr(k, params, r2) * k.h2)
                       : w;
     }
-    return fj.mass * (scorr_on ? li + lambda[j] + pbf_scorr(k, c.cubic_spline != 0, params, r2) * k.h2 : li + lambda[j]);
+    return fj.mass * (scorr_on ? li + lambda[j] + pbf_scorr(k, params, r2) * k.h2 : li + lambda[j]);
   };
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
-    if (r2 > 0.0f) dp += (weight(j, r2) * pbf_grad_fac(c, r2)) * xij;
+    if (r2 > 0.0f) dp += (weight(j, r2) * spiky_grad_fac(k, sqrtf(r2))) * xij;
   });
   const Vec3 xi = p.pos[i];
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_pbf_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    if (r2 > 0.0f) dp += (weight(j, r2) * pbf_grad_fac(c, r2)) * (xi - xg);
+    if (r2 > 0.0f) dp += (weight(j, r2) * spiky_grad_fac(k, sqrtf(r2))) * (xi - xg);
   });
   const float rho0 = fi.rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
     if (r2 <= 0.0f) return;
-    const float s = scorr_on ? li + pbf_scorr(k, c.cubic_spline != 0, params, r2) * k.h2 : li;
-    dp += (rho0 * volume * s * pbf_grad_fac(c, r2)) * xib;
+    const float s = scorr_on ? li + pbf_scorr(k, params, r2) * k.h2 : li;
+    dp += (rho0 * volume * s * spiky_grad_fac(k, sqrtf(r2))) * xib;
   });
   return (1.0f / c.fluids[p.fluid[i]].rest_density) * dp;
 }
 
-// [MM13] eq. 17, XSPH viscosity: Delta v_i = c sum_j m_j / rho_ij (v_j - v_i) W_ij (pbf_kernel), rho_ij the mean
+// [MM13] eq. 17, XSPH viscosity: Delta v_i = c sum_j m_j / rho_ij (v_j - v_i) W_ij (Poly6), rho_ij the mean
 // density of the pair: the form of forces.h's XSPH (the paper writes the unit-mass sum without m_j / rho_ij).
 // The solver sets v_i += Delta v_i after the velocity update. [m/s]
 SPH_HD inline Vec3 pbf_xsph(const SimConstants& c, const GridView& grid, const ParticleView& p, const Vec3* vel,
@@ -213,21 +198,22 @@ SPH_HD inline Vec3 pbf_xsph(const SimConstants& c, const GridView& grid, const P
   Vec3 dv{0.0f, 0.0f, 0.0f};
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3, float r2) {
     if (r2 <= 0.0f) return;
-    dv += xsph_pair_weight(k, c.cubic_spline != 0, 1.0f, c.fluids[p.fluid[j]].mass, r2, rho_i, p.density[j]) * (vel[j] - vi);
+    dv += xsph_pair_weight(k, false, 1.0f, c.fluids[p.fluid[j]].mass, r2, rho_i, p.density[j]) * (vel[j] - vi);
   });
   return params.xsph_c * dv;
 }
 
 // [MM13] eq. 15, vorticity: omega_i = curl v = sum_j (m_j / rho_j) (v_j - v_i) x grad_j W_ij, grad_j W_ij =
-// -grad_i W_ij (pbf_grad_fac). The paper's unit-mass sum with the volumes m_j / rho_j, which makes it the SPH curl:
+// -grad_i W_ij (Spiky). The paper's unit-mass sum with the volumes m_j / rho_j, which makes it the SPH curl:
 // a rigid rotation v = w x x gives omega = 2 w where the neighbourhood is full. [1/s]
 SPH_HD inline Vec3 pbf_vorticity(const SimConstants& c, const GridView& grid, const ParticleView& p, const Vec3* vel,
                                  int32_t i) {
+  const KernelCoeffs& k = c.kernel;
   const Vec3 vi = vel[i];
   Vec3 omega{0.0f, 0.0f, 0.0f};
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    const Vec3 grad_j = (-c.fluids[p.fluid[j]].mass / p.density[j] * pbf_grad_fac(c, r2)) * xij;
+    const Vec3 grad_j = (-c.fluids[p.fluid[j]].mass / p.density[j] * spiky_grad_fac(k, sqrtf(r2))) * xij;
     omega += cross(vel[j] - vi, grad_j);
   });
   return omega;
@@ -246,7 +232,7 @@ SPH_HD inline Vec3 pbf_vorticity_confinement(const SimConstants& c, const GridVi
   Vec3 eta{0.0f, 0.0f, 0.0f};
   for_each_pbf_pair(c, grid, p, i, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    eta += (c.fluids[p.fluid[j]].mass / p.density[j] * (length(omega[j]) - wi) * pbf_grad_fac(c, r2)) *
+    eta += (c.fluids[p.fluid[j]].mass / p.density[j] * (length(omega[j]) - wi) * spiky_grad_fac(k, sqrtf(r2))) *
            xij;
   });
   const float eta_len = length(eta);

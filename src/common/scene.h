@@ -187,9 +187,7 @@ struct Scene {
   EquationOfState eos = EquationOfState::Tait;
   PressureForm pressure_form = PressureForm::MonaghanSymmetric;
   KernelPair kernel = KernelPair::Poly6Spiky;
-  bool kernel_set = false;  // sph.kernel given: said to be ignored under DFSPH (its own kernel)
-  // pbf.jacobi_weight given; if not, the cubic spline's default replaces pbf_defaults' (params.h)
-  bool pbf_jacobi_weight_set = false;
+  bool kernel_set = false;  // sph.kernel given: said to be ignored under DFSPH and PBF (their own kernels)
   ViscosityModel viscosity = ViscosityModel::Morris;
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)

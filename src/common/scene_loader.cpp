@@ -340,7 +340,6 @@ void read_solver(ObjectReader& r, Scene& s) {
     b.clamp_expansion = pr.boolean("clamp_expansion", b.clamp_expansion != 0) ? 1 : 0;
     b.xsph_c = float(pr.number("xsph", b.xsph_c, 0.0, 1.0));
     b.vorticity_epsilon = float(pr.number("vorticity_epsilon", b.vorticity_epsilon, 0.0, 1000.0));
-    s.pbf_jacobi_weight_set = pr.has("jacobi_weight");
     b.jacobi_weight = float(pr.number("jacobi_weight", b.jacobi_weight, 0.0, 1.0, true));
     b.chebyshev = float(pr.number("chebyshev", b.chebyshev, 0.0, 0.99));  // below 1, as dfsph.chebyshev
     pr.finish();
@@ -457,9 +456,6 @@ Scene read_scene(const json& root, const std::string& source) {
   }
 
   read_solver(r, s);
-  // One kernel for PBF needs a smaller weight (params.h, kPbfCubicSplineJacobiWeight).
-  if (s.solver == Solver::Pbf && s.kernel == KernelPair::CubicSpline && !s.pbf_jacobi_weight_set)
-    s.pbf.jacobi_weight = kPbfCubicSplineJacobiWeight;
   // PBF has no wall force: its walls are the collision and, in its constraint, the walls' mirror images. With
   // the collision alone a front piles particles onto a wall's plane, where nothing pushes them off, and the
   // 16k dam break blew up at the impact (0.33 s, at 4 and at 2 ms steps; docs/results.md). So under PBF
