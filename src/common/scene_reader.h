@@ -162,6 +162,10 @@ inline void check_box(const Vec3d& lo, const Vec3d& hi, const std::string& sourc
     if (!(hi[i] > lo[i])) fail(source, key, "max must be larger than min on every axis");
 }
 
+// "solver" and its block, read in scene_solver.cpp: a block for another solver than the one chosen is an
+// error (r: the scene's top-level object).
+void read_solver(ObjectReader& r, Scene& s);
+
 // The parts of a scene read in scene_solids.cpp: the meshes, the rigid bodies and the probes (r: the scene's
 // top-level object).
 void read_meshes(ObjectReader& r, Scene& s);
