@@ -56,6 +56,12 @@ add_test(NAME scene_viscosity_cubes_differ
          COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/viscosity_cubes_check.py $<TARGET_FILE:sph_run>
                  ${SPH_CLI_SCENES}/viscosity_cubes.json ${SPH_CLI_OUT}/viscosity_cubes)
 set_tests_properties(scene_viscosity_cubes_differ PROPERTIES TIMEOUT 300)
+# The same under PBF, which applies the fluids' laminar viscosity since 2026-12-02 (src/solvers/pbf.h,
+# apply_viscosity); before, it ignored it and ran all three cubes as water.
+add_test(NAME scene_viscosity_cubes_differ_pbf
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/viscosity_cubes_check.py $<TARGET_FILE:sph_run>
+                 ${SPH_CLI_SCENES}/viscosity_cubes.json ${SPH_CLI_OUT}/viscosity_cubes_pbf --set solver=pbf)
+set_tests_properties(scene_viscosity_cubes_differ_pbf PROPERTIES TIMEOUT 300)
 
 if(NOT SPH_HAVE_DEMO)
   return()

@@ -146,14 +146,19 @@ TEST_CASE("device solvers: DFSPH with two fluids of density ratio 10 in the numb
 }
 
 TEST_CASE("device solvers: PBF with two fluids of density ratio 10 in the number-density form", "[device][solvers][multiphase]") {
-  // Mirror walls, the light fluid's corrections weighted by inverse mass (src/common/pbf.h).
-  const sph::Scene scene = scene_file("two_layers.json", {"resolution.particles_across=5", "solver=pbf"});
-  REQUIRE(scene.number_density);
-  check_solver_case(scene, 30);
+  // Mirror walls, the light fluid's corrections weighted by inverse mass (src/common/pbf.h); then with the
+  // fluids' artificial viscosity (src/solvers/pbf.h, apply_viscosity: sub-cycled, 2 updates a step here).
+  for (const char* artificial : {"false", "true"}) {
+    const sph::Scene scene = scene_file("two_layers.json", {"resolution.particles_across=5", "solver=pbf",
+                                                            std::string("pbf.artificial_viscosity=") + artificial});
+    REQUIRE(scene.number_density);
+    check_solver_case(scene, 30);
+  }
 }
 
 TEST_CASE("device solvers: PBF with the continuum surface force on a free drop", "[device][solvers][surface_tension]") {
-  // The force at the positions the solve ended at (src/solvers/pbf.h, SyncGridPositionsFn), XSPH at 0.1.
+  // The force at the positions the solve ended at (src/solvers/pbf.h, SyncGridPositionsFn), XSPH at 0.1, and
+  // the scene's laminar viscosity (Morris, 0.5 Pa s).
   const sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=6", "solver=pbf", "pbf.xsph=0.1"});
   REQUIRE(scene.surface_tension_model == sph::SurfaceTensionModel::Csf);
   check_solver_case(scene, 30);

@@ -47,6 +47,7 @@ void check_pbf_equal(const sph::PbfConstants& a, const sph::PbfConstants& b) {
   CHECK(a.vorticity_epsilon == b.vorticity_epsilon);
   CHECK(a.jacobi_weight == b.jacobi_weight);
   CHECK(a.chebyshev == b.chebyshev);
+  CHECK(a.artificial_viscosity == b.artificial_viscosity);
 }
 
 // One bad value of a block key and the words its refusal must hold.
@@ -112,7 +113,7 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
   SECTION("pbf") {
     const sph::Scene s = parse_solver("pbf", R"("pbf": { "iterations": 9, "density_tolerance": 0.005, "relaxation": 2.5,
         "scorr_k": 0.3, "scorr_n": 3, "scorr_dq": 0.25, "clamp_expansion": false, "xsph": 0.02,
-        "vorticity_epsilon": 0.5, "jacobi_weight": 0.6, "chebyshev": 0.5 })");
+        "vorticity_epsilon": 0.5, "jacobi_weight": 0.6, "chebyshev": 0.5, "artificial_viscosity": true })");
     const sph::PbfConstants& b = s.pbf;
     CHECK(b.iterations == 9);
     CHECK(b.density_tolerance == Approx(0.005f));
@@ -125,6 +126,8 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
     CHECK(b.vorticity_epsilon == Approx(0.5f));
     CHECK(b.jacobi_weight == Approx(0.6f));
     CHECK(b.chebyshev == Approx(0.5f));
+    CHECK(b.artificial_viscosity == 1);
+    CHECK(sph::pbf_defaults().artificial_viscosity == 0);  // XSPH alone unless asked
     // The closed lower ends are allowed: no tolerance (always all iterations), no s_corr, no XSPH.
     const sph::Scene z = parse_solver("pbf", R"("pbf": { "density_tolerance": 0, "relaxation": 0.001, "scorr_k": 0,
         "xsph": 0, "vorticity_epsilon": 0, "jacobi_weight": 1, "chebyshev": 0 })");
@@ -177,6 +180,7 @@ TEST_CASE("loader: scene solver values out of range are refused with the key pat
         {"scorr_dq", "0.999999999", "allowed (0, 1)"},      {"xsph", "-0.1", "allowed [0, 1]"},
         {"xsph", "1.5", "allowed [0, 1]"},                  {"vorticity_epsilon", "-1", "allowed [0, 1000]"},
         {"vorticity_epsilon", "1e4", "allowed [0, 1000]"},  {"clamp_expansion", "0", "expected true or false"},
+        {"artificial_viscosity", "\"yes\"", "expected true or false"},
         {"jacobi_weight", "0", "allowed (0, 1]"},           {"jacobi_weight", "1.2", "allowed (0, 1]"},
         {"jacobi_weight", "-0.5", "allowed (0, 1]"},        {"chebyshev", "1", "allowed [0, 0.99]"},
         {"chebyshev", "-0.1", "allowed [0, 0.99]"},         {"chebyshev", "\"fast\"", "expected a number"},

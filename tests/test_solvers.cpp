@@ -322,7 +322,7 @@ TEST_CASE("PBF's weighted, Chebyshev-accelerated iterations bring a resting colu
   // Issue 12 (no drift at rest) and 15 (largest speed at rest): the paper's plain Jacobi iteration amplifies
   // short density waves (docs/results.md, "Why PBF rattles at rest"), and the column never settles. With the
   // weight and the Chebyshev acceleration (the defaults) it settles within about 1.5 s (XSPH 0.01 being its
-  // only damping). Measured: the largest speed over the last 0.5 s, against g dt, the speed gravity gives in
+  // only damping: the scene's artificial viscosity acts under PBF only with pbf.artificial_viscosity). Measured: the largest speed over the last 0.5 s, against g dt, the speed gravity gives in
   // one step (what a particle resting on the floor must lose every step).
   struct Rest {
     double v_max_late = 0.0, compression = 0.0, top_change = 0.0;

@@ -4,7 +4,7 @@ thin fluid has spread across the tank, the middle one is a pancake and the most 
 Runs sph_run (8 particles across a cube, to be quick; 10 in the scene gives the same picture) and measures
 each fluid's height (98th percentile of y above the floor) and width along x (2nd to 98th percentile).
 
-usage: viscosity_cubes_check.py SPH_RUN SCENE OUT_DIR"""
+usage: viscosity_cubes_check.py SPH_RUN SCENE OUT_DIR [SPH_RUN OPTION ...] (for example --set solver=pbf)"""
 import os
 import shutil
 import subprocess
@@ -27,9 +27,10 @@ def shape(frame):
 
 def main():
     sph_run, scene, out = sys.argv[1:4]
+    extra = sys.argv[4:]
     shutil.rmtree(out, ignore_errors=True)
     subprocess.run([sph_run, scene, "--backend", "cpu", "--time", "0.4", "--frames-every", "0.4", "--quiet",
-                    "--set", "resolution.particles_across=8", "--out", out], check=True)
+                    "--set", "resolution.particles_across=8", "--out", out] + extra, check=True)
     start, end = shape(os.path.join(out, "frame_00000.ply")), shape(os.path.join(out, "frame_00001.ply"))
     h0 = start[0][0] - 0.1  # the cubes start 0.1 m above the floor
     w0 = start[0][1]

@@ -45,10 +45,10 @@ void print_solver_summary(const Simulation& sim) {
   std::cout << "solver_density_error_max: " << t.max_density_error << "\n"
             << "solver_capped_steps: " << t.density_capped_steps << "\n";
   if (dfsph) std::cout << "divergence_capped_steps: " << t.divergence_capped_steps << "\n";
-  // DFSPH's sub-cycled non-pressure forces (the viscosities above their explicit bound; viscous_limit.h):
-  // the most sub-steps a step took, and how many steps took more than one (their extra force passes are
-  // timed in the predict phase).
-  if (dfsph)
+  // DFSPH's sub-cycled non-pressure forces and PBF's viscosity (the viscosities above their explicit bound;
+  // viscous_limit.h): the most sub-steps a step took, and how many steps took more than one (their extra force
+  // passes are timed in DFSPH's predict phase, in PBF's forces phase).
+  if (scene.solver != Solver::Wcsph)
     std::cout << "viscous_substeps: max " << t.max_viscous_substeps << ", sub-cycled steps " << t.substepped_steps
               << " of " << t.steps << "\n";
   if (t.density_capped_steps > 0)

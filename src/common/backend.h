@@ -82,7 +82,7 @@ struct SolverStats {
   double divergence_error = 0.0;      // DFSPH: mean max(dt D rho / Dt, 0) / rho0 after the solve
   bool density_capped = false;
   bool divergence_capped = false;
-  int32_t viscous_substeps = 1;       // DFSPH: sub-steps of the non-pressure forces (viscous_limit.h)
+  int32_t viscous_substeps = 1;       // DFSPH: sub-steps of the non-pressure forces, PBF: of its viscosity (viscous_limit.h)
 };
 
 // Accumulated wall time per phase, for the runner's summary, the benchmark and the demo panel.

@@ -42,17 +42,22 @@ SPH_HD inline Vec3 user_force_acceleration(const SimConstants& c, Vec3 x) {
   return (c.user_force.strength * (1.0f - dist / c.user_force.radius) / dist) * to_point;
 }
 
-// The force model's compile-time switches: the pressure form, whether any fluid has near pressure, and
-// whether there is a pressure term at all (kPressure = false: the non-pressure forces of the incompressible
-// solvers, src/solvers/dfsph.h, whose pressure is their own solve's).
-template <PressureForm kForm, bool kNear, bool kPressure = true>
+// The force model's compile-time switches: the pressure form, whether any fluid has near pressure, whether
+// there is a pressure term at all (kPressure = false: the non-pressure forces of the incompressible solvers,
+// src/solvers/dfsph.h, whose pressure is their own solve's), and whether the viscosity is all there is
+// (kViscousOnly: PBF's viscosity, src/solvers/pbf.h, apply_viscosity, whose step applies gravity, the user
+// force, XSPH and its surface tension in phases of its own; no cohesion, adhesion, XSPH, gravity or user force).
+template <PressureForm kForm, bool kNear, bool kPressure = true, bool kViscousOnly = false>
 struct ForceModel {
   static constexpr PressureForm form = kForm;
   static constexpr bool near = kNear;
-  static constexpr bool pressure = kPressure;
+  static constexpr bool pressure = kPressure && !kViscousOnly;
+  static constexpr bool viscous_only = kViscousOnly;
 };
 // Viscosity, surface tension, gravity and the user force; no pressure, no near pressure.
 using NonPressureForces = ForceModel<PressureForm::MonaghanSymmetric, false, false>;
+// The fluids' laminar and artificial viscosity alone (with the walls' and boundary particles' friction).
+using ViscousForces = ForceModel<PressureForm::MonaghanSymmetric, false, false, true>;
 
 // Calls f(ForceModel<...>{}) with the model of c: one dispatch per loop over particles, not per pair.
 template <class F>
@@ -231,7 +236,8 @@ SPH_HD_ALWAYS_INLINE Vec3 boundary_pair(const SimConstants& c, BoundaryPairSides
   }
   // Adhesion ([AKT13] eq. 6, calibrated from the fluid's contact angle: cohesion_energy.h): a pull towards the
   // boundary particle, -k_a Psi_b a(r / h) x_ab / r.
-  if (c.adhesion_enabled) f -= s.fluid.fluid->adhesion * s.wall.mass * akinci_adhesion_shape(r / k.h) * inv_r;
+  if (!Model::viscous_only && c.adhesion_enabled)
+    f -= s.fluid.fluid->adhesion * s.wall.mass * akinci_adhesion_shape(r / k.h) * inv_r;
   Vec3 acc = f * xab;
   if (friction > 0.0f) acc += friction * laminar_viscosity_pair(c, s.fluid, s.wall, r, r2, grad, vab);
   return acc;
@@ -311,7 +317,7 @@ template <class Model>
 SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a) {
   if (p.age[a] < 0.0f) {  // inlet particle: kinematic until it leaves the inlet (thesis 4.1.6)
     p.acc[a] = Vec3{0.0f, 0.0f, 0.0f};
-    if (c.xsph_enabled) p.xsph_dv[a] = Vec3{0.0f, 0.0f, 0.0f};
+    if (!Model::viscous_only && c.xsph_enabled) p.xsph_dv[a] = Vec3{0.0f, 0.0f, 0.0f};
     return;
   }
   const KernelCoeffs& k = c.kernel;
@@ -329,6 +335,7 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
     const Vec3 vab = va - side_b.vel;
     pressure_viscosity_pair<Model>(c, side_a, side_b, xab, r2, vab, acc);
     const float mb = side_b.mass;
+    if (Model::viscous_only) return;
     if (c.surface_tension_enabled && &fa == &fb) acc -= cohesion_pair(k, fa.cohesion, mb, r2, xab);
     if (c.xsph_enabled) {  // XSPH [Monaghan 1989]: v_a += eps sum m_b / rho_ab (v_b - v_a) W_ab
       dv -= xsph_pair_weight(k, c.cubic_spline != 0, fa.xsph, mb, r2, side_a.rho, side_b.rho) * vab;
@@ -351,10 +358,12 @@ SPH_HD inline void forces_with(const SimConstants& c, const GridView& grid, cons
     acc += push_only(walls, xg, pair);
   });
   if (grid.boundary.n > 0) acc += boundary_forces<Model>(c, grid, side_a, xa);
-  acc += c.gravity;  // external forces, thesis eq. 2.25
-  if (c.user_force.strength != 0.0f) acc += user_force_acceleration(c, xa);
+  if (!Model::viscous_only) {
+    acc += c.gravity;  // external forces, thesis eq. 2.25
+    if (c.user_force.strength != 0.0f) acc += user_force_acceleration(c, xa);
+  }
   p.acc[a] = acc;
-  if (c.xsph_enabled) p.xsph_dv[a] = dv;
+  if (!Model::viscous_only && c.xsph_enabled) p.xsph_dv[a] = dv;
 }
 
 }  // namespace sph

@@ -347,7 +347,9 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     fc.particle_side = float(std::cbrt(double(fc.mass) / f.rest_density));
     if (f.surface_tension > 0.0) (csf ? c.csf_enabled : c.surface_tension_enabled) = 1;
     if (f.xsph > 0.0) c.xsph_enabled = 1;
-    if (f.artificial_viscosity > 0.0) c.artificial_enabled = 1;
+    // Under PBF only with pbf.artificial_viscosity (params.h, PbfConstants).
+    if (f.artificial_viscosity > 0.0 && (scene.solver != Solver::Pbf || scene.pbf.artificial_viscosity != 0))
+      c.artificial_enabled = 1;
     s.max_speed_of_sound = std::max(s.max_speed_of_sound, f.speed_of_sound);
   }
   check_spring_step(scene, s.spring_rate);

@@ -83,6 +83,10 @@ struct PbfConstants {
   // Chebyshev acceleration of the iterations ([Wan15], solvers/chebyshev.h): the estimate rho of the weighted
   // iteration's spectral radius, in [0, 0.99]; 0: plain (weighted) Jacobi.
   float chebyshev;
+  // 1: Monaghan's artificial viscosity of the fluids (fluids.N.artificial_viscosity) acts under PBF as well,
+  // beside XSPH: the damping WCSPH and DFSPH give the same scene (src/solvers/pbf.h, apply_viscosity). 0 (the
+  // default): XSPH alone, as [MM13]; the laminar viscosity (sph.viscosity) acts either way.
+  int32_t artificial_viscosity;
 };
 
 // [BK15]'s defaults: eta = 0.01% and eta_v = 0.1% (section 5), at least 2 density iterations (SPlisHSPlasH's
@@ -95,7 +99,7 @@ constexpr DfsphConstants dfsph_defaults() { return DfsphConstants{1e-4f, 1e-3f, 
 // constraint nothing pulls, and s_corr only pushes the free surface outward a little every step; as
 // v = Delta x / dt that is a speed growing as the step shrinks, and a resting column with k = 0.1 blew up
 // within 0.015 s at dt = 0.25 ms (measured; tests/test_solvers.cpp keeps the default stable there).
-constexpr PbfConstants pbf_defaults() { return PbfConstants{0.1f, 0.0f, 4, 0.2f, 1, 0.01f, 0.0f, 4, 0.0f, 0.7f, 0.85f}; }
+constexpr PbfConstants pbf_defaults() { return PbfConstants{0.1f, 0.0f, 4, 0.2f, 1, 0.01f, 0.0f, 4, 0.0f, 0.7f, 0.85f, 0}; }
 
 enum class Integrator : int32_t {
   ExplicitEuler,            // thesis eq. 2.29, kept to show where it fails
@@ -218,7 +222,8 @@ struct SimConstants {
   int32_t xsph_enabled;             // any fluid with xsph > 0
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
   float artificial_rate;            // lambda_max of that term [1/s] (viscous_limit.h)
-  // DFSPH's sub-steps of its non-pressure forces (viscous_limit.h, viscous_substeps): the artificial and the
+  // DFSPH's sub-steps of its non-pressure forces and PBF's of its viscosity (viscous_limit.h, viscous_substeps;
+  // under PBF the artificial term counts only with pbf.artificial_viscosity): the artificial and the
   // laminar viscosity's lambda_max summed [1/s]. No further margin: the artificial term's bound is already
   // above its real rate (0.73 of it measured), and with a margin of 0.5 (time_step.cfl_viscosity) the 16k dam
   // break at cfl_velocity 0.6 blew up at 0.064 s where with the bound alone it ran (docs/results.md).

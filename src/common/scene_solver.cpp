@@ -68,7 +68,7 @@ void read_solver(ObjectReader& r, Scene& s) {
   if (r.has("pbf")) {
     ObjectReader pr(r.raw("pbf"), source, "pbf");
     pr.allow({"iterations", "density_tolerance", "relaxation", "scorr_k", "scorr_n", "scorr_dq", "clamp_expansion",
-              "xsph", "vorticity_epsilon", "jacobi_weight", "chebyshev"});
+              "xsph", "vorticity_epsilon", "jacobi_weight", "chebyshev", "artificial_viscosity"});
     PbfConstants& b = s.pbf;
     b.iterations = int32_t(pr.integer("iterations", b.iterations, 1, 1000));
     b.density_tolerance = float(pr.number("density_tolerance", b.density_tolerance, 0.0, 0.1));
@@ -91,6 +91,7 @@ void read_solver(ObjectReader& r, Scene& s) {
     b.vorticity_epsilon = float(pr.number("vorticity_epsilon", b.vorticity_epsilon, 0.0, 1000.0));
     b.jacobi_weight = float(pr.number("jacobi_weight", b.jacobi_weight, 0.0, 1.0, true));
     b.chebyshev = float(pr.number("chebyshev", b.chebyshev, 0.0, 0.99));  // below 1, as dfsph.chebyshev
+    b.artificial_viscosity = pr.boolean("artificial_viscosity", b.artificial_viscosity != 0) ? 1 : 0;
     pr.finish();
   }
 }

@@ -135,8 +135,12 @@ void Simulation::relax(const BackendFactory& factory) {
   // it clamped the fluid only expands (drop_zero_g with the volume mass rule: 79% below rest density after
   // 5000 steps); the large viscosity damps the tensile instability that keeping it risks in a run.
   rc.clamp_negative_pressure = 0;
+  // The fluids' artificial viscosity as WCSPH has it (PBF's constants leave it off without
+  // pbf.artificial_viscosity).
+  rc.artificial_enabled = 0;
   for (int32_t f = 0; f < rc.num_fluids; ++f) {
     FluidConstants& fc = rc.fluids[f];
+    if (fc.artificial_alpha > 0.0f) rc.artificial_enabled = 1;
     const double mu = spec.viscosity > 0.0 ? spec.viscosity : fc.rest_density * 0.03 * setup_.h * fc.speed_of_sound;
     fc.viscosity = float(mu);
   }
@@ -260,14 +264,14 @@ void Simulation::switch_backend(const BackendFactory& factory) {
 
 // WCSPH: the thesis's limits (time_step.h, choose_time_step); DFSPH and PBF: the CFL step of [BK15]
 // (choose_incompressible_step), with the acceleration's limit under DFSPH, and under PBF where the continuum
-// surface force acts (its capillary waves; otherwise PBF's step follows the speeds only).
+// surface force acts (its capillary waves; otherwise PBF's step follows the speeds only), and the laminar
+// viscosity's explicit limit for both (the artificial viscosity's rate, scaled by c0, is sub-cycled instead:
+// dfsph.h, pbf.h).
 StepChoice Simulation::choose_step() const {
   const SimConstants& c = setup_.constants;
   if (c.solver != Solver::Wcsph) {
     const bool accel_limit = c.solver == Solver::Dfsph || (c.solver == Solver::Pbf && c.csf_enabled);
-    // PBF applies no laminar viscosity (XSPH stands in), so the laminar viscosity's limit does not bind it.
-    const double viscous_rate = c.solver == Solver::Pbf ? 0.0 : setup_.viscous_rate;
-    return choose_incompressible_step(scene_.time_step, setup_.spacing, viscous_rate, diag_.max_speed, setup_.h,
+    return choose_incompressible_step(scene_.time_step, setup_.spacing, setup_.viscous_rate, diag_.max_speed, setup_.h,
                                       accel_limit ? diag_.max_accel : 0.0, setup_.spring_rate);
   }
   return choose_time_step(scene_.time_step, setup_.h, setup_.max_speed_of_sound, setup_.viscous_rate,

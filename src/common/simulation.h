@@ -68,7 +68,7 @@ struct SolverTotals {
   long density_capped_steps = 0;         // steps whose solve stopped at its cap above tolerance
   long divergence_capped_steps = 0;
   double max_density_error = 0.0;        // largest end-of-solve mean compression of any step
-  long substepped_steps = 0;             // DFSPH: steps that sub-cycled the non-pressure forces
+  long substepped_steps = 0;             // DFSPH, PBF: steps that sub-cycled the non-pressure forces (PBF: viscosity)
   int32_t max_viscous_substeps = 1;
   void add(const SolverStats& s);
 };

@@ -11,9 +11,12 @@ namespace sph {
 
 namespace {
 
-// The least XSPH c with which PBF's continuum surface force held drop_oscillation together (0.1 did at 12 and
-// 16 across, 0.03 and the paper's 0.01 threw particles off: tests/test_surface_tension.cpp).
+// The least XSPH c with which PBF's continuum surface force held drop_oscillation together without a laminar
+// viscosity (0.1 did at 12 and 16 across, 0.03 and the paper's 0.01 threw particles off), and the laminar
+// viscosity with which it held it at the paper's c = 0.01 (the scene's 0.5 Pa s, at 12 to 18 across; with
+// c = 0.1 as well, 3 corner particles left a 12-across cube): tests/test_surface_tension.cpp.
 constexpr float kPbfCsfXsph = 0.1f;
+constexpr double kPbfCsfViscosity = 0.5;  // [Pa s]
 
 // The least iteration count with which PBF held a heavy fluid over a light one (rayleigh_taylor: 4 blew up
 // at 0.19 s, 10 grew within 3% of linear theory: tests/test_multiphase.cpp).
@@ -22,9 +25,10 @@ constexpr int32_t kPbfMultiphaseIterations = 10;
 }  // namespace
 
 // What the chosen solver does not read, said once at set-up ("setup: ..." lines of sph_run) rather than
-// silently: DFSPH and PBF integrate their own way (no integrator), and PBF has no laminar or artificial
-// viscosity, cohesion or near pressure (XSPH and its position constraint stand in for them; its surface
-// tension is the continuum surface force, sph.surface_tension = "csf").
+// silently: DFSPH and PBF integrate their own way (no integrator), and PBF has no cohesion or near pressure
+// (its position constraint stands in for them; its surface tension is the continuum surface force,
+// sph.surface_tension = "csf") and no artificial viscosity unless pbf.artificial_viscosity asks for it (XSPH
+// is its own); the laminar viscosity acts under every solver.
 void report_ignored_settings(const Scene& scene, std::vector<std::string>& report) {
   // A fluid's surface tension under the continuum surface force.
   const bool csf_tension = scene.surface_tension_model == SurfaceTensionModel::Csf &&
@@ -62,11 +66,15 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
     add(cohesion, "surface_tension");
     add(f.near_stiffness > 0.0, "near_stiffness");
     // WCSPH and DFSPH apply the artificial viscosity whatever sph.viscosity says (guided creation sets
-    // artificial_enabled from the fluids alone).
-    add(f.artificial_viscosity > 0.0, "artificial_viscosity");
-    add(f.viscosity > 1e-3 && scene.viscosity != ViscosityModel::Artificial, "viscosity");
+    // artificial_enabled from the fluids alone); PBF with pbf.artificial_viscosity.
+    const bool artificial = f.artificial_viscosity > 0.0 && scene.pbf.artificial_viscosity == 0;
+    add(artificial, "artificial_viscosity");
+    const bool laminar = (scene.viscosity == ViscosityModel::Mueller || scene.viscosity == ViscosityModel::Morris) &&
+                         f.viscosity > 0.0;
     if (!ignored.empty())
       report.push_back("note: solver \"pbf\" ignores " + ignored + "; its viscosity is XSPH (pbf.xsph)" +
+                       (laminar ? " and the laminar one of sph.viscosity" : "") +
+                       (artificial ? "; pbf.artificial_viscosity = true adds the artificial one" : "") +
                        (cohesion ? ", its surface tension the continuum surface force (sph.surface_tension = \"csf\")" : ""));
   }
   // Measured on rayleigh_taylor (docs/results.md, "Several fluids under PBF"): with 4 iterations the interface
@@ -81,19 +89,28 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
           "fluids under PBF\")";
     report.push_back(os.str());
   }
-  // Measured on drop_oscillation (docs/results.md, "Surface tension under PBF"): at the paper's XSPH a
-  // drop threw particles off, and so it did with the default weighted, Chebyshev-accelerated iteration
-  // (drops of 10 to 18 across shed 10 particles in all, against 1 with the paper's plain iteration and 1 with
-  // the weight alone); the tests hold the drop with the plain iteration.
+  // Measured on drop_oscillation (docs/results.md, "Surface tension under PBF"): with the paper's XSPH as its
+  // only viscosity a drop threw particles off, and so it did with the default weighted, Chebyshev-accelerated
+  // iteration (with XSPH at 0.1, drops of 10 to 18 across shed 10 particles in all, against 1 with the paper's
+  // plain iteration and 1 with the weight alone; with the scene's laminar viscosity 4 at 16 across); the tests
+  // hold the drop with the plain iteration.
   const bool plain = scene.pbf.jacobi_weight == 1.0f && scene.pbf.chebyshev == 0.0f;
-  if (csf_tension && (scene.pbf.xsph_c < kPbfCsfXsph || !plain)) {
+  // The least laminar viscosity among the fluids with a surface tension (0 without a laminar model).
+  const bool laminar_model = scene.viscosity == ViscosityModel::Mueller || scene.viscosity == ViscosityModel::Morris;
+  double mu = HUGE_VAL;
+  for (const FluidSpec& f : scene.fluids)
+    if (f.surface_tension > 0.0) mu = std::min(mu, laminar_model ? f.viscosity : 0.0);
+  const bool xsph = scene.pbf.xsph_c >= kPbfCsfXsph;
+  const bool damped = mu >= kPbfCsfViscosity ? !xsph : xsph;
+  if (csf_tension && !(plain && damped)) {
     std::ostringstream os;
-    os << "note: under solver \"pbf\" the continuum surface force held a 0.1 m drop together, in the tests, with "
-       << "pbf.xsph >= " << kPbfCsfXsph << " (PBF's only viscosity) and the paper's plain iteration "
-       << "(pbf.jacobi_weight = 1, pbf.chebyshev = 0); here pbf.xsph = " << scene.pbf.xsph_c << ", pbf.jacobi_weight = "
-       << scene.pbf.jacobi_weight << ", pbf.chebyshev = " << scene.pbf.chebyshev
-       << ": a lower pbf.xsph or the Chebyshev weights threw particles off (docs/results.md, \"Surface tension under "
-          "PBF\")";
+    os << "note: under solver \"pbf\" the continuum surface force held a 0.1 m drop together, in the tests, with the "
+       << "paper's plain iteration (pbf.jacobi_weight = 1, pbf.chebyshev = 0) and either a laminar viscosity of at least "
+       << kPbfCsfViscosity << " Pa s (sph.viscosity \"morris\" or \"mueller\") with pbf.xsph below " << kPbfCsfXsph
+       << ", or a lower one with pbf.xsph >= " << kPbfCsfXsph << "; here pbf.jacobi_weight = " << scene.pbf.jacobi_weight
+       << ", pbf.chebyshev = " << scene.pbf.chebyshev << ", pbf.xsph = " << scene.pbf.xsph_c << ", laminar viscosity "
+       << mu << " Pa s: other settings threw particles off (docs/results.md, \"Surface tension "
+          "under PBF\")";
     report.push_back(os.str());
   }
 }

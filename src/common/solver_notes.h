@@ -11,7 +11,8 @@
 namespace sph {
 
 // Appends to report a "note: ..." line for each setting the scene's solver ignores (DFSPH and PBF integrate
-// their own way; PBF has no laminar or artificial viscosity, cohesion or near pressure) and for each
+// their own way; PBF has no cohesion or near pressure, and no artificial viscosity without
+// pbf.artificial_viscosity) and for each
 // combination measured to fail under PBF (the solver's keys and values named, with what held in the tests).
 void report_ignored_settings(const Scene& scene, std::vector<std::string>& report);
 

@@ -42,30 +42,10 @@
 #include "reduction.h"
 #include "wcsph.h"
 #include "surface_forces.h"
+#include "viscous_forces.h"
 
 namespace sph {
 namespace dfsph {
-
-// The forces loop's per-particle inputs without a pressure (forces.h reads vel_inv_rho, and the pressure
-// terms are compiled out by NonPressureForces).
-struct ForceInputsFn {
-  ParticleView p;
-  SPH_HD void operator()(int32_t i) const {
-    p.vel_force[i] = p.vel[i];
-    p.vel_inv_rho[i] = with_w(p.vel[i], 1.0f / p.density[i]);
-    p.pressure_rho2[i] = 0.0f;
-    p.near_pressure_rho2[i] = 0.0f;
-  }
-};
-
-// v* = v + dt a_nonpressure ([BK15] algorithm 1, line 5); inlet particles (age < 0) keep their velocity.
-struct PredictVelocityFn {
-  ParticleView p;
-  float dt;
-  SPH_HD void operator()(int32_t i) const {
-    if (p.age[i] >= 0.0f) p.vel[i] += dt * p.acc[i];
-  }
-};
 
 // x += dt v (algorithm 1, line 8), after XSPH's correction where enabled (as WCSPH's correct: integrate.h);
 // pos_start records where the step started, for the shapes' segment test (boundaries.h).

@@ -10,7 +10,8 @@
 //                     x* += w Delta p (Chebyshev-extrapolated) and the shapes and walls again; a last
 //                     density for the error and what follows
 //   correct:          v = (x* - x) / dt
-//   forces:           vorticity confinement (eqs. 15, 16), the continuum surface force and XSPH (eq. 17) on v
+//   forces:           vorticity confinement (eqs. 15, 16), the continuum surface force, XSPH (eq. 17) and the
+//                     fluids' viscosity (apply_viscosity) on v
 //   recycle
 // The old position x is pos_start (the shapes test the segment x -> x*). The neighbours are the pairs the grid
 // phase selected at x*, evaluated at the current positions (for_each_pbf_pair, src/common/pbf.h).
@@ -30,9 +31,11 @@
 #include "../common/pbf.h"
 #include "../common/sph_hd.h"
 #include "../common/springs.h"
+#include "../common/viscous_limit.h"
 #include "chebyshev.h"
 #include "reduction.h"
 #include "surface_forces.h"
+#include "viscous_forces.h"
 #include "wcsph.h"
 
 namespace sph {
@@ -199,6 +202,45 @@ struct SyncGridPositionsFn {
   SPH_HD void operator()(int32_t i) const { p.pos_mass[i] = with_w(p.pos[i], p.pos_mass[i].w); }
 };
 
+// The acceleration the prediction left in acc (gravity, the user force, the springs), set aside in
+// pos_previous (free once the constraint solve is done) while the viscosity's loop writes acc, and added back
+// after it, so that acc again holds the step's non-pressure acceleration for the driver's diagnostics (the
+// viscosity's that of its last sub-step).
+struct SetAsideAccelerationFn {
+  ParticleView p;
+  SPH_HD void operator()(int32_t i) const { p.pos_previous[i] = p.acc[i]; }
+};
+struct AddBackAccelerationFn {
+  ParticleView p;
+  SPH_HD void operator()(int32_t i) const { p.acc[i] += p.pos_previous[i]; }
+};
+
+// The fluids' viscosity (viscous_forces.h: the laminar one of sph.viscosity and, with pbf.artificial_viscosity,
+// Monaghan's artificial one) on the velocities the step ends with, at the positions and densities the solve
+// ended at: v += dt a_visc, as DFSPH applies its non-pressure forces, explicit and sub-cycled in n updates of
+// dt / n where their rate exceeds 2 / dt (viscous_limit.h; the forces recomputed between them at the same
+// positions). [MM13] has XSPH alone; without more, PBF ignored a scene's viscosity (a honey-like fluid ran
+// as water), and the start-up motion of fluid at rest at 1 ms steps did not die out (two_layers at ratio 10:
+// 0.63 m/s after 0.25 s with XSPH alone, 0.03 m/s with the scene's artificial viscosity; docs/results.md,
+// "PBF takes the scene's viscosity"). Returns n (1 where no viscosity acts).
+template <class Exec>
+int32_t apply_viscosity(Exec& x, float dt) {
+  using C = typename Exec::Constants;
+  const SimConstants& c = x.host_constants();
+  if (!viscosity_acts(c)) return 1;
+  const ParticleView p = x.particles();
+  x.for_each(SyncGridPositionsFn{p});
+  x.for_each(SetAsideAccelerationFn{p});
+  const int32_t n = viscous_substeps(double(c.substep_rate), double(dt));
+  for (int32_t k = 0; k < n; ++k) {
+    x.for_each(ForceInputsFn{p});
+    x.for_each(wcsph::ForcesFn<C, ViscousForces>{x.constants(), x.grid(), p});
+    x.for_each(PredictVelocityFn{p, dt / float(n)});
+  }
+  x.for_each(AddBackAccelerationFn{p});
+  return n;
+}
+
 struct ApplyVelocityFn {
   ParticleView p;
   float dt;
@@ -268,17 +310,24 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
     case Phase::Forces: {
       // The continuum surface force (surface_forces.h) at the end of the step, at the positions and densities
       // the solve ended at, applied with vorticity confinement as an acceleration over dt: the next step's
-      // prediction carries it, as it carries gravity.
+      // prediction carries it, as it carries gravity. XSPH, vorticity confinement and the surface force from
+      // the velocities of the correction; the viscosity from the same velocities (apply_viscosity), added
+      // before the others. Measured on drop_oscillation under the continuum surface force (docs/results.md):
+      // this way no particle left the cube at 10 to 18 across (3 corner particles at 12 with XSPH at c = 0.1
+      // as well); with the viscosity applied first and XSPH taken from the velocities it left, the 12-across
+      // cube lost one from a face's tip.
       const bool csf = x.host_constants().csf_enabled != 0;
       if (s.vorticity_epsilon > 0.0f) x.for_each(VorticityFn<C>{x.constants(), x.grid(), x.particles()});
-      if (s.vorticity_epsilon > 0.0f || s.xsph_c > 0.0f || csf) {
+      const bool corrections = s.vorticity_epsilon > 0.0f || s.xsph_c > 0.0f || csf;
+      if (corrections) {
         x.for_each(VelocityCorrectionFn<C>{x.constants(), x.grid(), x.particles()});
         if (csf) {
           x.for_each(SyncGridPositionsFn{x.particles()});
           continuum_surface_force(x, x.particles().delta_pos);
         }
-        x.for_each(ApplyVelocityFn{x.particles(), dt});
       }
+      stats.viscous_substeps = apply_viscosity(x, dt);
+      if (corrections) x.for_each(ApplyVelocityFn{x.particles(), dt});
       return;
     }
     case Phase::Recycle: x.recycle(); return;
