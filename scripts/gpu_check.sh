@@ -236,6 +236,8 @@ run() {
          --set fluids.0.spring_plasticity=2 --set fluids.0.spring_yield=0.02 --set solver=pbf
     step "frames host = cuda: two layers (ratio 10), PBF" 60 frames_match layers_pbf two_layers.json --time 0.05 --frames-every 0.01 \
          --set solver=pbf
+    step "frames host = cuda: two layers, PBF with the artificial viscosity" 60 frames_match layers_pbf_av two_layers.json \
+         --time 0.05 --frames-every 0.01 --set solver=pbf --set pbf.artificial_viscosity=true
     step "frames host = cuda: drop, PBF with the continuum surface force" 60 frames_match drop_pbf drop_oscillation.json --time 0.05 \
          --frames-every 0.01 --set solver=pbf --set pbf.xsph=0.1
     step "frames host = cuda: contact angles (sheared images)" 60 frames_match contact contact_angle.json --time 0.05 --frames-every 0.01
