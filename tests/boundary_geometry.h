@@ -1,9 +1,10 @@
 // Geometry in double precision for the penalty boundaries' tests (test_boundaries.cpp, test_boundary_runs.cpp):
-// a small vector type and the signed distance of a point to a shape's allowed region.
+// a small vector type, the signed distance of a point to a shape's allowed region, and seeded random draws.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "common/boundaries.h"
 
@@ -63,5 +64,20 @@ inline double allowed_distance(const Shape& s, D3 x) {
   }
   return 0.0;
 }
+
+// Seeded random numbers for the tests' samples: one engine, drawn in the order of the calls.
+class RandomDraws {
+ public:
+  explicit RandomDraws(unsigned seed) : rng_(seed) {}
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
+  D3 direction() {
+    std::normal_distribution<double> g;
+    return unit({g(rng_), g(rng_), g(rng_)});
+  }
+
+ private:
+  std::mt19937 rng_;
+};
 
 }  // namespace sph_test

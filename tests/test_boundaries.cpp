@@ -95,15 +95,10 @@ struct Sample {
   double depth = 0.0;  // exact penetration depth of the float position x, where has_normal
 };
 
-class Sampler {
+// Random points near each shape, from RandomDraws' seeded numbers (boundary_geometry.h).
+class Sampler : public RandomDraws {
  public:
-  explicit Sampler(unsigned seed) : rng_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
-  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
-  D3 direction() {
-    std::normal_distribution<double> g;
-    return unit({g(rng_), g(rng_), g(rng_)});
-  }
+  using RandomDraws::RandomDraws;
   double depth() { return std::exp(uniform(std::log(1e-4), std::log(0.02))); }  // 0.1 mm to 2 cm
   D3 velocity() { return uniform(0.1, 5.0) * direction(); }
 
@@ -175,7 +170,6 @@ class Sampler {
     smp.depth = -allowed_distance(s, d3(smp.x));
     return smp;
   }
-  std::mt19937 rng_;
 };
 
 struct ShapeCase {

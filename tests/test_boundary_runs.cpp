@@ -24,21 +24,7 @@ using namespace sph_test;
 
 namespace {
 
-// Seeded random numbers, as test_boundaries.cpp's Sampler draws them (the same engine and distributions, so a
-// seed gives the same runs as before the two files were split).
-class Sampler {
- public:
-  explicit Sampler(unsigned seed) : rng_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
-  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
-  D3 direction() {
-    std::normal_distribution<double> g;
-    return unit({g(rng_), g(rng_), g(rng_)});
-  }
-
- private:
-  std::mt19937 rng_;
-};
+using Sampler = RandomDraws;
 
 // Mechanical energy: kinetic (sph::measure) plus gravitational potential -sum m g.x (zero at the origin,
 // which the scenes below put on the container floor).
