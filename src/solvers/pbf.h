@@ -313,9 +313,9 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
       // prediction carries it, as it carries gravity. XSPH, vorticity confinement and the surface force from
       // the velocities of the correction; the viscosity from the same velocities (apply_viscosity), added
       // before the others. Measured on drop_oscillation under the continuum surface force (docs/results.md):
-      // this way no particle left the cube at 10 to 18 across (3 corner particles at 12 with XSPH at c = 0.1
-      // as well); with the viscosity applied first and XSPH taken from the velocities it left, the 12-across
-      // cube lost one from a face's tip.
+      // this way, with the plain iteration, no particle left the cube at 10 to 18 across (3 corners at 12
+      // with XSPH at c = 0.1 as well); with the viscosity applied first and XSPH taken from the velocities it
+      // left, the 12-across cube lost one from a face's tip.
       const bool csf = x.host_constants().csf_enabled != 0;
       if (s.vorticity_epsilon > 0.0f) x.for_each(VorticityFn<C>{x.constants(), x.grid(), x.particles()});
       const bool corrections = s.vorticity_epsilon > 0.0f || s.xsph_c > 0.0f || csf;
