@@ -23,6 +23,8 @@ enum class PressureForm : int32_t { MonaghanSymmetric, Mueller };    // thesis e
 // names no laminar term (older scenes); Monaghan's artificial viscosity (thesis eq. 2.21) is added to any of
 // them wherever a fluid's alpha > 0 (SimConstants::artificial_enabled).
 enum class ViscosityModel : int32_t { None, Mueller, Morris, Artificial };
+// Whether the model has a laminar term (Mueller's or Morris's).
+constexpr bool has_laminar_term(ViscosityModel m) { return m == ViscosityModel::Mueller || m == ViscosityModel::Morris; }
 // The pressure solver of a step (src/solvers/): weakly compressible SPH with an equation of state (thesis
 // chapter 2), divergence-free SPH [BK15] (src/common/dfsph.h) or position-based fluids [MM13] (pbf.h).
 enum class Solver : int32_t { Wcsph, Dfsph, Pbf };

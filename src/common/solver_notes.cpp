@@ -69,8 +69,7 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
     // artificial_enabled from the fluids alone); PBF with pbf.artificial_viscosity.
     const bool artificial = f.artificial_viscosity > 0.0 && scene.pbf.artificial_viscosity == 0;
     add(artificial, "artificial_viscosity");
-    const bool laminar = (scene.viscosity == ViscosityModel::Mueller || scene.viscosity == ViscosityModel::Morris) &&
-                         f.viscosity > 0.0;
+    const bool laminar = has_laminar_term(scene.viscosity) && f.viscosity > 0.0;
     if (!ignored.empty())
       report.push_back("note: solver \"pbf\" ignores " + ignored + "; its viscosity is XSPH (pbf.xsph)" +
                        (laminar ? " and the laminar one of sph.viscosity" : "") +
@@ -96,7 +95,7 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
   // hold the drop with the plain iteration.
   const bool plain = scene.pbf.jacobi_weight == 1.0f && scene.pbf.chebyshev == 0.0f;
   // The least laminar viscosity among the fluids with a surface tension (0 without a laminar model).
-  const bool laminar_model = scene.viscosity == ViscosityModel::Mueller || scene.viscosity == ViscosityModel::Morris;
+  const bool laminar_model = has_laminar_term(scene.viscosity);
   double mu = HUGE_VAL;
   for (const FluidSpec& f : scene.fluids)
     if (f.surface_tension > 0.0) mu = std::min(mu, laminar_model ? f.viscosity : 0.0);

@@ -41,7 +41,7 @@ struct PredictVelocityFn {
 // pbf.artificial_viscosity, guided_creation.cpp).
 inline bool viscosity_acts(const SimConstants& c) {
   bool laminar = false;
-  if (c.viscosity == ViscosityModel::Mueller || c.viscosity == ViscosityModel::Morris)
+  if (has_laminar_term(c.viscosity))
     for (int32_t f = 0; f < c.num_fluids; ++f) laminar = laminar || c.fluids[f].viscosity > 0.0f;
   return laminar || c.artificial_enabled != 0;
 }
