@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -69,6 +70,18 @@ inline double spherical_cap_angle(double volume, double height) {
   const double pi = 3.14159265358979323846;
   const double radius = (3.0 * volume / (pi * height * height) + height) / 3.0;
   return std::acos(std::max(-1.0, std::min(1.0, 1.0 - height / radius))) * 180.0 / pi;
+}
+
+// Mean height of the 100 highest particles: the top layer of the 10 x 10 column, whatever splashes above it
+// moves it little.
+inline double top_layer_height(const sph::ParticleState& ps) {
+  std::vector<float> y(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) y[i] = ps.pos[i].y;
+  const std::size_t n = std::min<std::size_t>(100, y.size());
+  std::partial_sort(y.begin(), y.begin() + std::ptrdiff_t(n), y.end(), std::greater<float>());
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) sum += y[i];
+  return n > 0 ? sum / double(n) : 0.0;
 }
 
 }  // namespace sph_test

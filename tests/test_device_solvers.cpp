@@ -87,6 +87,16 @@ TEST_CASE("device solvers: PBF with mirror walls", "[device][solvers]") {
   check_solver_case(scene, 30);
 }
 
+TEST_CASE("device solvers: PBF with the coarse grid", "[device][solvers][coarse]") {
+  // Its cell sums are fixed-point integers added atomically: the same bits in any order.
+  check_solver_case(scene_file("hydrostatic_tank.json", {"resolution.particles_across=8", "solver=pbf", "time_step.mode=fixed",
+                                                         "time_step.dt=0.004", "pbf.coarse_grid=true"}),
+                    30);
+  check_solver_case(scene_file("dam_break.json", {"resolution.particles_across=10", "solver=pbf", "time_step.mode=fixed",
+                                                  "time_step.dt=0.004", "pbf.coarse_grid=true"}),
+                    30);
+}
+
 TEST_CASE("device solvers: every solver with boundary particles", "[device][solvers][boundary_particles]") {
   // Issue 13: the boundary particles' sums (density, pressure and friction for WCSPH, alpha, rate and kappa for
   // DFSPH, lambda and Delta p for PBF) bit for bit. slip 0.5 so that the friction term runs.

@@ -4,6 +4,7 @@
 // file, the key path and what is allowed.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -48,6 +49,8 @@ void check_pbf_equal(const sph::PbfConstants& a, const sph::PbfConstants& b) {
   CHECK(a.jacobi_weight == b.jacobi_weight);
   CHECK(a.chebyshev == b.chebyshev);
   CHECK(a.artificial_viscosity == b.artificial_viscosity);
+  CHECK(a.coarse_grid == b.coarse_grid);
+  CHECK(a.coarse_iterations == b.coarse_iterations);
 }
 
 // One bad value of a block key and the words its refusal must hold.
@@ -113,7 +116,8 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
   SECTION("pbf") {
     const sph::Scene s = parse_solver("pbf", R"("pbf": { "iterations": 9, "density_tolerance": 0.005, "relaxation": 2.5,
         "scorr_k": 0.3, "scorr_n": 3, "scorr_dq": 0.25, "clamp_expansion": false, "xsph": 0.02,
-        "vorticity_epsilon": 0.5, "jacobi_weight": 0.6, "chebyshev": 0.5, "artificial_viscosity": true })");
+        "vorticity_epsilon": 0.5, "jacobi_weight": 0.6, "chebyshev": 0.5, "artificial_viscosity": true,
+        "coarse_grid": true, "coarse_iterations": 12 })");
     const sph::PbfConstants& b = s.pbf;
     CHECK(b.iterations == 9);
     CHECK(b.density_tolerance == Approx(0.005f));
@@ -128,6 +132,9 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
     CHECK(b.chebyshev == Approx(0.5f));
     CHECK(b.artificial_viscosity == 1);
     CHECK(sph::pbf_defaults().artificial_viscosity == 0);  // XSPH alone unless asked
+    CHECK(b.coarse_grid == 1);
+    CHECK(b.coarse_iterations == 12);
+    CHECK(sph::pbf_defaults().coarse_grid == 0);  // [MM13]'s iteration unless asked
     // The closed lower ends are allowed: no tolerance (always all iterations), no s_corr, no XSPH.
     const sph::Scene z = parse_solver("pbf", R"("pbf": { "density_tolerance": 0, "relaxation": 0.001, "scorr_k": 0,
         "xsph": 0, "vorticity_epsilon": 0, "jacobi_weight": 1, "chebyshev": 0 })");
@@ -181,6 +188,8 @@ TEST_CASE("loader: scene solver values out of range are refused with the key pat
         {"xsph", "1.5", "allowed [0, 1]"},                  {"vorticity_epsilon", "-1", "allowed [0, 1000]"},
         {"vorticity_epsilon", "1e4", "allowed [0, 1000]"},  {"clamp_expansion", "0", "expected true or false"},
         {"artificial_viscosity", "\"yes\"", "expected true or false"},
+        {"coarse_grid", "1", "expected true or false"},     {"coarse_iterations", "0", "allowed [1, 1000]"},
+        {"coarse_iterations", "1001", "allowed [1, 1000]"}, {"coarse_iterations", "2.5", "expected a whole number"},
         {"jacobi_weight", "0", "allowed (0, 1]"},           {"jacobi_weight", "1.2", "allowed (0, 1]"},
         {"jacobi_weight", "-0.5", "allowed (0, 1]"},        {"chebyshev", "1", "allowed [0, 0.99]"},
         {"chebyshev", "-0.1", "allowed [0, 0.99]"},         {"chebyshev", "\"fast\"", "expected a number"},
@@ -304,4 +313,23 @@ TEST_CASE("setup: scene solver DFSPH and PBF refuse a step above sqrt(d / |g|)",
     REQUIRE_NOTHROW(sph::create_setup(scene("dfsph", R"({ "mode": "adaptive", "max": 1 })", "[0, 0, 0]"), 1.0));
     REQUIRE_NOTHROW(sph::create_setup(scene("wcsph", R"({ "mode": "adaptive", "max": 1 })"), 1.0));
   }
+}
+
+TEST_CASE("loader: PBF's coarse grid is refused where it cannot work, and its size reported", "[loader][solver]") {
+  // Its walls are the analytic shapes (pbf_coarse.h, shape_excludes): boundary particles would be air to it.
+  REQUIRE_THROWS_WITH(parse(SceneText{}, {"solver=pbf", "pbf.coarse_grid=true", "sph.walls=particles"}),
+                      Contains("test.json") && Contains("pbf.coarse_grid") && Contains("boundary particles") &&
+                          Contains("mirror"));
+  REQUIRE_NOTHROW(parse(SceneText{}, {"solver=pbf", "sph.walls=particles"}));
+  // Dense over the domain: a 30 x 30 m container at h = 2.5 cm takes 1,220 x 1,220 x 14 cells.
+  SceneText wide;
+  wide.boundaries = R"([{ "type": "box", "min": [0, 0, 0], "max": [30, 30, 0.3] }])";
+  REQUIRE_THROWS_WITH(sph::create_setup(parse(wide, {"solver=pbf", "pbf.coarse_grid=true"}), 1.0),
+                      Contains("test.json") && Contains("pbf.coarse_grid") && Contains("cells") &&
+                          Contains("coarse_grid false"));
+  REQUIRE_NOTHROW(sph::create_setup(parse(wide, {"solver=pbf"}), 1.0));
+  const sph::Setup s = sph::create_setup(parse(SceneText{}, {"solver=pbf", "pbf.coarse_grid=true"}), 1.0);
+  const bool reported = std::any_of(s.report.begin(), s.report.end(),
+                                    [](const std::string& line) { return line.find("coarse grid") != std::string::npos; });
+  CHECK(reported);
 }

@@ -44,18 +44,6 @@ Column measure_column(sph::Simulation& sim) {
   return c;
 }
 
-// Mean height of the 100 highest particles: the top layer of the 10 x 10 column, whatever splashes above it
-// moves it little.
-double top_layer_height(const sph::ParticleState& ps) {
-  std::vector<float> y(ps.size());
-  for (std::size_t i = 0; i < ps.size(); ++i) y[i] = ps.pos[i].y;
-  const std::size_t n = std::min<std::size_t>(100, y.size());
-  std::partial_sort(y.begin(), y.begin() + std::ptrdiff_t(n), y.end(), std::greater<float>());
-  double sum = 0.0;
-  for (std::size_t i = 0; i < n; ++i) sum += y[i];
-  return n > 0 ? sum / double(n) : 0.0;
-}
-
 }  // namespace
 
 TEST_CASE("DFSPH holds a resting column with mirror walls at rest density and height for 1 s", "[solvers][dfsph]") {

@@ -468,6 +468,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
                      " m once the particles inside solids are removed");
 
   c.grid = make_grid(scene, s.particles, s.jets, s.h);
+  if (scene.solver == Solver::Pbf && scene.pbf.coarse_grid != 0) check_coarse_grid(scene, c.grid, s.report);
   // The walls' boundary particles, over the domain the grid now spans (planes and quadrics reach that far).
   if (scene.boundary_particles) {
     try {

@@ -89,6 +89,11 @@ struct PbfConstants {
   // beside XSPH: the damping WCSPH and DFSPH give the same scene (src/solvers/pbf.h, apply_viscosity). 0 (the
   // default): XSPH alone, as [MM13]; the laminar viscosity (sph.viscosity) acts either way.
   int32_t artificial_viscosity;
+  // 1: once a step, after the first density, a coarse-grid projection of the compression (pbf_coarse.h), which
+  // carries a correction across the whole fluid at once: a resting column at 4 ms and 4 iterations 0.04%
+  // compressed instead of 2.5% (docs/results.md, "PBF's coarse grid"). 0 (the default): [MM13]'s iteration.
+  int32_t coarse_grid;
+  int32_t coarse_iterations;  // the most conjugate-gradient iterations of its solve (it stops at 1e-3 of |b|)
 };
 
 // [BK15]'s defaults: eta = 0.01% and eta_v = 0.1% (section 5), at least 2 density iterations (SPlisHSPlasH's
@@ -101,7 +106,7 @@ constexpr DfsphConstants dfsph_defaults() { return DfsphConstants{1e-4f, 1e-3f, 
 // constraint nothing pulls, and s_corr only pushes the free surface outward a little every step; as
 // v = Delta x / dt that is a speed growing as the step shrinks, and a resting column with k = 0.1 blew up
 // within 0.015 s at dt = 0.25 ms (measured; tests/test_solvers.cpp keeps the default stable there).
-constexpr PbfConstants pbf_defaults() { return PbfConstants{0.1f, 0.0f, 4, 0.2f, 1, 0.01f, 0.0f, 4, 0.0f, 0.7f, 0.85f, 0}; }
+constexpr PbfConstants pbf_defaults() { return PbfConstants{0.1f, 0.0f, 4, 0.2f, 1, 0.01f, 0.0f, 4, 0.0f, 0.7f, 0.85f, 0, 0, 50}; }
 
 enum class Integrator : int32_t {
   ExplicitEuler,            // thesis eq. 2.29, kept to show where it fails

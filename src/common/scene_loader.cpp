@@ -387,6 +387,11 @@ Scene read_scene(const json& root, const std::string& source) {
   if (!s.bodies.empty() && s.solver == Solver::Pbf)
     fail(source, "bodies", "rigid bodies are coupled to the wcsph and dfsph solvers only so far, not to \"pbf\" "
                            "(allowed: \"solver\": \"wcsph\" or \"dfsph\")");
+  // The coarse grid's walls are the analytic shapes (pbf_coarse.h, shape_excludes): boundary particles would
+  // count as air there, and the projection would push the fluid into them.
+  if (s.solver == Solver::Pbf && s.pbf.coarse_grid != 0 && s.boundary_particles)
+    fail(source, "pbf.coarse_grid", "the coarse grid knows the walls of \"boundaries\" (mirror or penalty walls), not walls "
+                                    "of boundary particles: set \"sph\": {\"walls\": \"mirror\"} or pbf.coarse_grid false");
   if (!s.meshes.empty() && !s.boundary_particles)
     fail(source, "meshes", "triangle meshes are walls of boundary particles only: set \"sph\": {\"walls\": \"particles\"} "
                            "(--set sph.walls=particles); mirror and penalty walls know the analytic shapes of \"boundaries\"");

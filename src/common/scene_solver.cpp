@@ -68,7 +68,8 @@ void read_solver(ObjectReader& r, Scene& s) {
   if (r.has("pbf")) {
     ObjectReader pr(r.raw("pbf"), source, "pbf");
     pr.allow({"iterations", "density_tolerance", "relaxation", "scorr_k", "scorr_n", "scorr_dq", "clamp_expansion",
-              "xsph", "vorticity_epsilon", "jacobi_weight", "chebyshev", "artificial_viscosity"});
+              "xsph", "vorticity_epsilon", "jacobi_weight", "chebyshev", "artificial_viscosity",
+              "coarse_grid", "coarse_iterations"});
     PbfConstants& b = s.pbf;
     b.iterations = int32_t(pr.integer("iterations", b.iterations, 1, 1000));
     b.density_tolerance = float(pr.number("density_tolerance", b.density_tolerance, 0.0, 0.1));
@@ -92,6 +93,8 @@ void read_solver(ObjectReader& r, Scene& s) {
     b.jacobi_weight = float(pr.number("jacobi_weight", b.jacobi_weight, 0.0, 1.0, true));
     b.chebyshev = float(pr.number("chebyshev", b.chebyshev, 0.0, 0.99));  // below 1, as dfsph.chebyshev
     b.artificial_viscosity = pr.boolean("artificial_viscosity", b.artificial_viscosity != 0) ? 1 : 0;
+    b.coarse_grid = pr.boolean("coarse_grid", b.coarse_grid != 0) ? 1 : 0;
+    b.coarse_iterations = int32_t(pr.integer("coarse_iterations", b.coarse_iterations, 1, 1000));
     pr.finish();
   }
 }

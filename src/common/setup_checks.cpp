@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "boundaries.h"
+#include "pbf_coarse.h"
+#include "setup_budget.h"
 
 namespace sph {
 
@@ -135,6 +137,22 @@ void check_jet_inlets(const Scene& scene, const std::vector<JetEmitter>& jets, c
         }
       }
   }
+}
+
+// The dense coarse grid takes 36 bytes a cell: 2^23 cells, 300 MB.
+constexpr int64_t kMaxCoarseCells = int64_t(1) << 23;
+
+void check_coarse_grid(const Scene& scene, const GridGeometry& grid, std::vector<std::string>& report) {
+  const CoarseGrid g = coarse_grid_of(grid);
+  std::ostringstream os;
+  os.precision(4);
+  os << g.nx << " x " << g.ny << " x " << g.nz << " cells of " << g.size << " m";
+  if (coarse_cell_count(g) > kMaxCoarseCells)
+    throw SceneError(scene.source + ": pbf.coarse_grid: the domain takes " + os.str() + ", more than " +
+                     count_text(double(kMaxCoarseCells)) +
+                     ": fit the domain (\"domain\" or the box container) to the fluid, coarsen the resolution, or set "
+                     "pbf.coarse_grid false");
+  report.push_back("PBF's coarse grid: " + os.str());
 }
 
 }  // namespace sph

@@ -36,4 +36,8 @@ void remove_blocked_points(const Scene& scene, double spacing, const std::vector
 // jet_index: the scene emitter index of each jet.
 void check_jet_inlets(const Scene& scene, const std::vector<JetEmitter>& jets, const std::vector<int>& jet_index);
 
+// PBF's coarse grid (src/common/pbf_coarse.h) over the domain `grid`: its size into the set-up report, or a
+// SceneError naming pbf.coarse_grid where the dense grid would take more than 2^23 cells.
+void check_coarse_grid(const Scene& scene, const GridGeometry& grid, std::vector<std::string>& report);
+
 }  // namespace sph

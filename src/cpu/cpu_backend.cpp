@@ -43,6 +43,14 @@ struct CpuBackend::Exec {
     const int32_t n = int32_t(b.s_.size());
     for (int32_t i = 0; i < n; ++i) f(i);
   }
+  template <class F>
+  void for_index(int32_t n, const F& f) {
+    for (int32_t i = 0; i < n; ++i) f(i);
+  }
+  void* scratch(std::size_t bytes) {
+    b.scratch_.resize((bytes + 7) / 8);
+    return b.scratch_.data();
+  }
   void build_grid() { b.build_grid(); }
   void recycle() { b.recycle(); }
   std::vector<RigidBody>& bodies() { return b.bodies_; }

@@ -91,6 +91,7 @@ class CpuBackend final : public Backend {
   PhaseTimes times_;
   SolverStats stats_;
   std::vector<double> reduce_a_, reduce_b_;  // the levels of a reduction (src/solvers/reduction.h)
+  std::vector<unsigned long long> scratch_;  // Exec::scratch (PBF's coarse grid)
 };
 
 }  // namespace sph

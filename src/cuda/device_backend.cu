@@ -381,6 +381,15 @@ class DeviceBackend final : public Backend {
     void for_each(const F& f) {
       launch(b.n(), f);
     }
+    template <class F>
+    void for_index(int32_t n, const F& f) {
+      launch(n, f);
+    }
+    void* scratch(std::size_t bytes) {
+      const std::size_t words = (bytes + 7) / 8;
+      if (b.scratch_.size() < words) b.scratch_.resize(words);
+      return thrust::raw_pointer_cast(b.scratch_.data());
+    }
     void build_grid() { b.build_grid(); }
     void recycle() { b.recycle(); }
     std::vector<RigidBody>& bodies() { return b.bodies_; }
@@ -476,6 +485,7 @@ class DeviceBackend final : public Backend {
   DeviceVector<int32_t> keep_;
   DeviceVector<uint8_t> keep_flag_;
   DeviceVector<double> reduce_a_, reduce_b_;  // the levels of a reduction (src/solvers/reduction.h)
+  DeviceVector<unsigned long long> scratch_;  // Exec::scratch (PBF's coarse grid)
   SolverStats stats_;
   ParticleState host_;
 

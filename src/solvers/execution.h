@@ -17,6 +17,10 @@
 //   SpringView springs();                    the viscoelastic springs (springs.h), capacity 0 without
 //   void for_each(const F& f);               f(i) for every particle i, in any order or in parallel: f may
 //                                            write only particle i's fields
+//   void for_index(int32_t n, const F& f);   f(q) for every q < n (a loop over something else than the
+//                                            particles: PBF's coarse cells), in any order or in parallel
+//   void* scratch(std::size_t bytes);        memory the loops may use (8-byte aligned; host memory on cpu and
+//                                            host, device memory on cuda), kept until the next call
 //   double sum(int32_t n, const F& f);       f(0) + ... + f(n - 1) in reduction.h's fixed order (the same bits
 //                                            on every back end), read back to the host: on cuda a copy
 //                                            that waits for the enqueued work (the solvers' convergence test)

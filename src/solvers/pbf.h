@@ -19,6 +19,8 @@
 // applied with the weight pbf.jacobi_weight and accelerated by Chebyshev's weights (pbf.chebyshev, [Wan15]):
 // together they keep the iteration from amplifying the short density waves that made the plain one rattle at
 // rest, and carry the floor's push farther up a column in the same iterations (docs/results.md, issue 12).
+// With pbf.coarse_grid the first density is followed by a coarse-grid projection of the compression
+// (pbf_coarse.h), which carries the correction across the fluid at once, and the density again.
 // With pbf.density_tolerance > 0 the iterations stop early once the mean compression max(C, 0) is within it
 // (one reduction a check, deterministic: reduction.h); a step that uses every iteration above it is flagged.
 #pragma once
@@ -33,6 +35,7 @@
 #include "../common/springs.h"
 #include "../common/viscous_limit.h"
 #include "chebyshev.h"
+#include "pbf_coarse.h"
 #include "reduction.h"
 #include "surface_forces.h"
 #include "viscous_forces.h"
@@ -251,6 +254,15 @@ struct ApplyVelocityFn {
   }
 };
 
+// After a move of the positions in the solve: half a spacing off mirror walls, out of the boundary particles.
+template <class Exec>
+void after_move(Exec& x) {
+  using C = typename Exec::Constants;
+  if (x.host_constants().mirror_walls) x.for_each(KeepOffWallsFn<C>{x.constants(), x.particles()});
+  const GridView g = x.grid();
+  if (g.boundary.n > 0) x.for_each(BoundaryParticleCollisionFn{g, x.particles(), x.host_constants().kernel.h2});
+}
+
 // The constraint iterations: density, error and lambda in one pass, then (unless done) Delta p and its
 // application; the last pass computes the density only.
 // Returns the iterations made; error: the mean compression at the end; capped: a tolerance was set and not met.
@@ -268,6 +280,12 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
     const bool last = it == s.iterations;
     if (last) x.for_each(DensityFn<C>{x.constants(), g, p});
     else x.for_each(DensityLambdaFn<C>{x.constants(), g, p});
+    if (it == 0 && !last && s.coarse_grid) {  // pbf_coarse.h, then the density and lambda it leaves
+      coarse_correction(x);
+      x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt, 1.0f, 1.0f});
+      after_move(x);
+      x.for_each(DensityLambdaFn<C>{x.constants(), g, p});
+    }
     if (last || s.density_tolerance > 0.0f) {
       error = mean_of(x, p.solver_error, n);
       if (last || error <= double(s.density_tolerance)) break;
@@ -275,8 +293,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
     x.for_each(CorrectionFn<C>{x.constants(), g, p});
     omega = it == 0 ? 1.0f : chebyshev_next_weight(s.chebyshev, omega);
     x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt, s.jacobi_weight, omega});
-    if (x.host_constants().mirror_walls) x.for_each(KeepOffWallsFn<C>{x.constants(), p});
-    if (g.boundary.n > 0) x.for_each(BoundaryParticleCollisionFn{g, p, x.host_constants().kernel.h2});
+    after_move(x);
     ++it;
   }
   capped = s.density_tolerance > 0.0f && error > double(s.density_tolerance);
@@ -297,9 +314,7 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
         x.for_each(SpringAccelerationFn<C>{x.constants(), x.springs(), x.particles(), dt});
       }
       x.for_each(PredictFn<C>{x.constants(), x.particles(), dt, springs});
-      if (x.host_constants().mirror_walls) x.for_each(KeepOffWallsFn<C>{x.constants(), x.particles()});
-      if (x.grid().boundary.n > 0)
-        x.for_each(BoundaryParticleCollisionFn{x.grid(), x.particles(), x.host_constants().kernel.h2});
+      after_move(x);
       return;
     }
     case Phase::BuildGrid: x.build_grid(); return;

@@ -1,0 +1,264 @@
+// PBF's coarse-grid correction (issue 12): the per-cell and per-particle formulas of one projection of the
+// particles' compression on a grid of cells h wide, shared by every back end. src/solvers/pbf_coarse.h runs
+// them in order (the conjugate-gradient solve between them).
+//
+// Why: k Jacobi iterations carry a correction about k kernel radii, so under gravity PBF's compression grows
+// with depth as (depth / d) g dt^2 / k (docs/results.md, "Why PBF misses 1%": 2.5% on a 20-particle column at
+// 4 ms and 4 iterations; a bound of about 1.2% for any iteration that uses neighbours only). A coarse grid
+// carries the floor's push up a column in one solve, as the coarse level of a multigrid cycle does, and the
+// hierarchy of Mueller's "Hierarchical Position Based Dynamics" (2008) does for cloth. The correction is the
+// pressure projection of grid-based solvers (Foster and Fedkiw 2001; Bridson, "Fluid Simulation for Computer
+// Graphics", ch. 5) applied to the particles' displacements instead of their velocities:
+//   find u = grad phi with div u = C on the cells holding fluid, phi = 0 in cells of air (the free surface),
+//   u . n = 0 through walls (no flux),
+// where C is the cell's compressed volume fraction, sum_i w_ic max(C_i, 0) V_i / H^3 (V_i = m_i / rho0_i, w_ic
+// trilinear "cloud in cell" weights), so that moving each particle by u expands every cell by the volume it
+// is compressed by. Discretely (7-point Laplacian, cells of H): A phi = b with
+//   (A phi)_c = sum over the six neighbours n that are not solid of (phi_c - phi_n), phi_n = 0 in air,
+//   b_c = -H^2 C_c,
+// A symmetric positive definite wherever the fluid touches air (otherwise only a constant, of zero gradient,
+// is undetermined). The particles move by u, trilinear between the cells' central-difference gradients;
+// the Jacobi iterations that follow remove what is left at the particles' scale.
+//
+// Cells: the neighbour grid's domain (GridGeometry: its origin, and cells of h / 2, two to a coarse cell),
+// dense, so the cells' number is known on the host without reading the particles. A cell is solid where its
+// centre lies where the scene's shapes keep the fluid out (shape_excludes), fluid where the particles'
+// trilinear weights fill at least half of it, air otherwise. Sums over particles are fixed point (integers,
+// 2^-32 units) added atomically: integer sums do not depend on the order, so every back end gets the same bits.
+#pragma once
+
+#include <cstdint>
+
+#include "boundaries.h"
+#include "params.h"
+#include "particle_view.h"
+#include "sph_hd.h"
+#include "vec3.h"
+
+namespace sph {
+
+// The coarse grid: dense over the domain, cells of two neighbour-grid cells (h).
+struct CoarseGrid {
+  Vec3 origin;  // the domain's lower corner [m]
+  float size;   // H [m]
+  int32_t nx, ny, nz;
+};
+
+// The coarse grid over the neighbour grid's domain.
+inline CoarseGrid coarse_grid_of(const GridGeometry& g) {
+  return CoarseGrid{g.origin, 2.0f * g.cell_size, (g.nx + 1) / 2, (g.ny + 1) / 2, (g.nz + 1) / 2};
+}
+
+inline int64_t coarse_cell_count(const CoarseGrid& g) { return int64_t(g.nx) * g.ny * g.nz; }
+
+enum : int32_t { kCoarseAir = 0, kCoarseFluid = 1, kCoarseSolid = 2 };
+
+// The arrays of one correction (scratch memory of the back end), one entry per cell.
+struct CoarseView {
+  CoarseGrid g;
+  unsigned long long* volume;       // sum w V / H^3, fixed point (kCoarseFixed)
+  unsigned long long* compression;  // sum w max(C, 0) V / H^3, fixed point
+  int32_t* flag;                    // kCoarseAir, kCoarseFluid or kCoarseSolid
+  float* phi;                       // the potential [m^2]
+  float* r;                         // the conjugate-gradient residual b - A phi
+  float* dir;                       // its search direction
+  float* a_dir;                     // A dir
+};
+
+// Bytes of scratch memory a CoarseView of `cells` cells takes (coarse_view carves them, 8-byte aligned).
+inline std::size_t coarse_view_bytes(int64_t cells) {
+  return std::size_t(cells) * (2 * sizeof(unsigned long long) + sizeof(int32_t) + 4 * sizeof(float)) + 64;
+}
+
+inline CoarseView coarse_view(const CoarseGrid& g, void* scratch) {
+  const std::size_t n = std::size_t(coarse_cell_count(g));
+  CoarseView v{};
+  v.g = g;
+  v.volume = static_cast<unsigned long long*>(scratch);
+  v.compression = v.volume + n;
+  v.phi = reinterpret_cast<float*>(v.compression + n);
+  v.r = v.phi + n;
+  v.dir = v.r + n;
+  v.a_dir = v.dir + n;
+  v.flag = reinterpret_cast<int32_t*>(v.a_dir + n);
+  return v;
+}
+
+constexpr double kCoarseFixed = 4294967296.0;  // 2^32: the fixed-point unit of the cells' sums
+
+// sum += v in fixed point, atomically (several particles add to a cell at once on host and cuda).
+SPH_HD inline void add_fixed(unsigned long long* sum, float v) {
+  const unsigned long long q = static_cast<unsigned long long>(static_cast<long long>(double(v) * kCoarseFixed));
+#if defined(__CUDA_ARCH__)
+  atomicAdd(sum, q);
+#else
+  __atomic_fetch_add(sum, q, __ATOMIC_RELAXED);
+#endif
+}
+
+SPH_HD inline float from_fixed(unsigned long long q) { return float(double(static_cast<long long>(q)) / kCoarseFixed); }
+
+// Whether point x lies where shape s keeps the fluid out (boundaries.h's regions): outside a container (a box's
+// open top is not a wall), inside an obstacle's solid, behind a plane, where a quadric is negative. An
+// absorbing shape is an outflow, not a wall.
+SPH_HD inline bool shape_excludes(const Shape& s, Vec3 x) {
+  if (s.absorb) return false;
+  switch (s.type) {
+    case ShapeType::Box: {
+      if (s.keep_inside)
+        return x.x < s.a.x || x.y < s.a.y || x.z < s.a.z || x.x > s.b.x || x.z > s.b.z || (!s.open_top && x.y > s.b.y);
+      float lo[3], hi[3];
+      obstacle_solid(s, lo, hi);
+      return x.x > lo[0] && x.x < hi[0] && x.y > lo[1] && x.y < hi[1] && x.z > lo[2] && x.z < hi[2];
+    }
+    case ShapeType::Sphere: {
+      const float r2 = length2(x - s.a), R2 = s.radius * s.radius;
+      return s.keep_inside ? r2 > R2 : r2 < R2;
+    }
+    case ShapeType::Plane: return dot(x - s.a, s.b) < 0.0f;
+    case ShapeType::Quadric: return quadric_value(s.q, x) < 0.0f;
+  }
+  return false;
+}
+
+// A position's place in the grid, in cells from the first cell's centre: cell (i0, j0, k0) and the
+// trilinear weights t towards the next cell along each axis.
+struct CoarseStencil {
+  int32_t i0, j0, k0;
+  float tx, ty, tz;
+};
+
+SPH_HD inline CoarseStencil coarse_stencil(const CoarseGrid& g, Vec3 x) {
+  const float inv = 1.0f / g.size;
+  const float fx = (x.x - g.origin.x) * inv - 0.5f, fy = (x.y - g.origin.y) * inv - 0.5f,
+              fz = (x.z - g.origin.z) * inv - 0.5f;
+  // Clamped before the conversion (far-away or non-finite positions), as grid.h's cell_coord.
+  const float lo = -2.0f, hx = float(g.nx) + 1.0f, hy = float(g.ny) + 1.0f, hz = float(g.nz) + 1.0f;
+  const float cx = fminf(fmaxf(floorf(fx), lo), hx), cy = fminf(fmaxf(floorf(fy), lo), hy),
+              cz = fminf(fmaxf(floorf(fz), lo), hz);
+  CoarseStencil s;
+  s.i0 = int32_t(cx), s.j0 = int32_t(cy), s.k0 = int32_t(cz);
+  s.tx = fminf(fmaxf(fx - cx, 0.0f), 1.0f), s.ty = fminf(fmaxf(fy - cy, 0.0f), 1.0f), s.tz = fminf(fmaxf(fz - cz, 0.0f), 1.0f);
+  return s;
+}
+
+SPH_HD inline bool coarse_inside(const CoarseGrid& g, int32_t i, int32_t j, int32_t k) {
+  return i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz;
+}
+
+SPH_HD inline int64_t coarse_index(const CoarseGrid& g, int32_t i, int32_t j, int32_t k) {
+  return (int64_t(k) * g.ny + j) * g.nx + i;
+}
+
+// Calls f(cell, weight) for the (up to) eight cells whose centres surround x, inside the grid.
+template <class F>
+SPH_HD inline void for_each_coarse_corner(const CoarseGrid& g, Vec3 x, F&& f) {
+  const CoarseStencil s = coarse_stencil(g, x);
+  for (int32_t c = 0; c < 8; ++c) {
+    const int32_t di = c & 1, dj = (c >> 1) & 1, dk = c >> 2;
+    const int32_t i = s.i0 + di, j = s.j0 + dj, k = s.k0 + dk;
+    if (!coarse_inside(g, i, j, k)) continue;
+    const float w = (di ? s.tx : 1.0f - s.tx) * (dj ? s.ty : 1.0f - s.ty) * (dk ? s.tz : 1.0f - s.tz);
+    f(coarse_index(g, i, j, k), w);
+  }
+}
+
+// Particle i's volume and compressed volume, over H^3, into the cells around it (trilinear weights).
+// Inlet particles (age < 0) take no part.
+SPH_HD inline void coarse_deposit(const SimConstants& c, const CoarseView& v, const ParticleView& p, int32_t i) {
+  if (p.age[i] < 0.0f) return;
+  const FluidConstants& f = c.fluids[p.fluid[i]];
+  const float H = v.g.size;
+  const float share = f.mass / (f.rest_density * H * H * H);  // V_i / H^3
+  const float compressed = share * p.solver_error[i];         // max(C_i, 0): PBF's store_density
+  for_each_coarse_corner(v.g, p.pos[i], [&](int64_t cell, float w) {
+    add_fixed(v.volume + cell, w * share);
+    if (compressed > 0.0f) add_fixed(v.compression + cell, w * compressed);
+  });
+}
+
+// Cell q's kind, and the solve's start: phi = 0, r = dir = b.
+SPH_HD inline void coarse_classify(const SimConstants& c, const CoarseView& v, int64_t q) {
+  const CoarseGrid& g = v.g;
+  const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
+  const Vec3 centre{g.origin.x + (float(i) + 0.5f) * g.size, g.origin.y + (float(j) + 0.5f) * g.size,
+                    g.origin.z + (float(k) + 0.5f) * g.size};
+  bool solid = false;
+  for (int32_t s = 0; s < c.num_shapes; ++s) solid = solid || shape_excludes(c.shapes[s], centre);
+  const bool fluid = !solid && from_fixed(v.volume[q]) >= 0.5f;
+  v.flag[q] = solid ? kCoarseSolid : (fluid ? kCoarseFluid : kCoarseAir);
+  const float b = fluid ? -(g.size * g.size) * from_fixed(v.compression[q]) : 0.0f;
+  v.phi[q] = 0.0f;
+  v.r[q] = b;
+  v.dir[q] = b;
+}
+
+// The value x takes at cell (a, b, c) in the stencil of a cell whose own value is `own`: x there if it holds
+// fluid, 0 in air or outside the grid, `own` behind a wall (the wall's mirror: no flux through it).
+SPH_HD inline float coarse_seen(const CoarseView& v, const float* x, int32_t a, int32_t b, int32_t c, float own) {
+  if (!coarse_inside(v.g, a, b, c)) return 0.0f;
+  const int64_t n = coarse_index(v.g, a, b, c);
+  const int32_t f = v.flag[n];
+  return f == kCoarseFluid ? x[n] : (f == kCoarseSolid ? own : 0.0f);
+}
+
+// 1 for a fluid cell with a face on air (or on the grid's edge): where the fluid can expand. Without any, A
+// phi = b fixes phi only up to a constant, and has a solution only for b of zero sum.
+SPH_HD inline float coarse_open(const CoarseView& v, int64_t q) {
+  if (v.flag[q] != kCoarseFluid) return 0.0f;
+  const CoarseGrid& g = v.g;
+  const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
+  const int32_t at[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
+  for (int32_t n = 0; n < 6; ++n) {
+    if (!coarse_inside(g, at[n][0], at[n][1], at[n][2])) return 1.0f;
+    if (v.flag[coarse_index(g, at[n][0], at[n][1], at[n][2])] == kCoarseAir) return 1.0f;
+  }
+  return 0.0f;
+}
+
+// (A x)_q for a fluid cell, 0 elsewhere.
+SPH_HD inline float coarse_apply(const CoarseView& v, const float* x, int64_t q) {
+  if (v.flag[q] != kCoarseFluid) return 0.0f;
+  const CoarseGrid& g = v.g;
+  const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
+  const float xq = x[q];
+  const float sum = coarse_seen(v, x, i - 1, j, k, xq) + coarse_seen(v, x, i + 1, j, k, xq) +
+                    coarse_seen(v, x, i, j - 1, k, xq) + coarse_seen(v, x, i, j + 1, k, xq) +
+                    coarse_seen(v, x, i, j, k - 1, xq) + coarse_seen(v, x, i, j, k + 1, xq);
+  return 6.0f * xq - sum;
+}
+
+// grad phi at cell q's centre [m]: central differences, phi = 0 in air, mirrored behind walls.
+SPH_HD inline Vec3 coarse_gradient(const CoarseView& v, int64_t q) {
+  const CoarseGrid& g = v.g;
+  const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
+  const float own = v.flag[q] == kCoarseFluid ? v.phi[q] : 0.0f;
+  const float s = 0.5f / g.size;
+  const float* x = v.phi;
+  return Vec3{s * (coarse_seen(v, x, i + 1, j, k, own) - coarse_seen(v, x, i - 1, j, k, own)),
+              s * (coarse_seen(v, x, i, j + 1, k, own) - coarse_seen(v, x, i, j - 1, k, own)),
+              s * (coarse_seen(v, x, i, j, k + 1, own) - coarse_seen(v, x, i, j, k - 1, own))};
+}
+
+// The displacement u at x [m]: the gradients of the cells around x that are not solid, trilinear, their
+// weights renormalised: beside a wall the fluid's own gradient, so that a layer along a wall moves with the
+// fluid beside it (a wall's zero taken into the weights sheared that layer every step, and a resting column
+// never came to rest).
+SPH_HD inline Vec3 coarse_displacement(const CoarseView& v, Vec3 x) {
+  const CoarseStencil s = coarse_stencil(v.g, x);
+  Vec3 u{0.0f, 0.0f, 0.0f};
+  float total = 0.0f;
+  for (int32_t c = 0; c < 8; ++c) {
+    const int32_t di = c & 1, dj = (c >> 1) & 1, dk = c >> 2;
+    const int32_t i = s.i0 + di, j = s.j0 + dj, k = s.k0 + dk;
+    if (!coarse_inside(v.g, i, j, k)) continue;
+    const int64_t cell = coarse_index(v.g, i, j, k);
+    if (v.flag[cell] == kCoarseSolid) continue;
+    const float w = (di ? s.tx : 1.0f - s.tx) * (dj ? s.ty : 1.0f - s.ty) * (dk ? s.tz : 1.0f - s.tz);
+    u += w * coarse_gradient(v, cell);
+    total += w;
+  }
+  return total > 0.0f ? (1.0f / total) * u : u;
+}
+
+}  // namespace sph
