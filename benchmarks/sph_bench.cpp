@@ -187,8 +187,9 @@ int main(int argc, char** argv) {
                "Workloads: the thesis's performance cube (16^3 and 32^3 particles, thesis 5.2 parameters), a cube of\n"
                "8,000 particles in a 0.2 m and a 50 m tank (the grid's cost against the domain's size), the\n"
                "dam break at several resolutions, and the dam break under each pressure solver: solver_wcsph,\n"
-               "solver_dfsph (its CFL step, at most the scene's time_step.max) and solver_pbf (fixed dt 4 ms), and\n"
-               "under each wall model, walls_mirror and walls_particles (boundary particles), each\n"
+               "solver_dfsph (its CFL step, at most the scene's time_step.max), solver_pbf (fixed dt 4 ms) and\n"
+               "solver_pbf_coarse (the same with pbf.coarse_grid), and under each wall model, walls_mirror and\n"
+               "walls_particles (boundary particles), each\n"
                "measured over the first --solver-time simulated seconds, with wall seconds per simulated second,\n"
                "mean dt and solver iterations per step. Writes OUT/bench.csv and OUT/bench.json naming the hardware."};
   sph::use_error_prefix(app);
@@ -242,6 +243,9 @@ int main(int argc, char** argv) {
   workloads.push_back({"solver_dfsph", "dam_break.json", {across, "solver=dfsph"}, 0.0, 0.0, false, solver_time});
   workloads.push_back({"solver_pbf", "dam_break.json", {across, "solver=pbf", "time_step.mode=fixed", "time_step.dt=0.004"},
                        0.0, 0.0, false, solver_time});
+  workloads.push_back({"solver_pbf_coarse", "dam_break.json",
+                       {across, "solver=pbf", "time_step.mode=fixed", "time_step.dt=0.004", "pbf.coarse_grid=true"}, 0.0,
+                       0.0, false, solver_time});
   // The wall models on the same dam break (issue 13: boundary particles at most 1.3 times mirror walls per
   // step), over the same stretch of the flow.
   for (const char* walls : {"mirror", "particles"})

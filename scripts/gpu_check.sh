@@ -250,7 +250,7 @@ run() {
     fi
     step "sph_bench cuda: dam break 16k, 100k, 1M, 4M" 240 "$BUNDLE/bin/default/sph_bench" --backends cuda --scenes "$SRC/scenes" \
          --dam-sizes 20 37 80 --dam-cuda 127 --workload dam_break_20 --workload dam_break_37 --workload dam_break_80 \
-         --workload dam_break_127 --workload solver_wcsph --workload solver_dfsph --workload solver_pbf \
+         --workload dam_break_127 --workload solver_wcsph --workload solver_dfsph --workload solver_pbf --workload solver_pbf_coarse \
          --workload walls_mirror --workload walls_particles --out "$WORK/bench"
     cp "$WORK/bench/bench.csv" "$RES/" 2>/dev/null
     step "interop probe: cuda writes GL buffers (EGL)" 90 interop_probe
