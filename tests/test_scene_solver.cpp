@@ -321,6 +321,14 @@ TEST_CASE("loader: PBF's coarse grid is refused where it cannot work, and its si
                       Contains("test.json") && Contains("pbf.coarse_grid") && Contains("boundary particles") &&
                           Contains("mirror"));
   REQUIRE_NOTHROW(parse(SceneText{}, {"solver=pbf", "sph.walls=particles"}));
+  // Between fluids of different rest density it stirred the interface (docs/results.md): refused, naming both.
+  SceneText two;
+  two.fluids = R"([{ "name": "water", "rest_density": 1000, "speed_of_sound": 20 },
+                   { "name": "oil", "rest_density": 800, "speed_of_sound": 20 }])";
+  REQUIRE_THROWS_WITH(parse(two, {"solver=pbf", "pbf.coarse_grid=true"}),
+                      Contains("test.json") && Contains("pbf.coarse_grid") && Contains("\"water\"") && Contains("\"oil\"") &&
+                          Contains("800"));
+  REQUIRE_NOTHROW(parse(two, {"solver=pbf"}));
   // Dense over the domain: a 30 x 30 m container at h = 2.5 cm takes 1,220 x 1,220 x 14 cells.
   SceneText wide;
   wide.boundaries = R"([{ "type": "box", "min": [0, 0, 0], "max": [30, 30, 0.3] }])";

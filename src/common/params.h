@@ -93,7 +93,7 @@ struct PbfConstants {
   // carries a correction across the whole fluid at once: a resting column at 4 ms and 4 iterations 0.04%
   // compressed instead of 2.5% (docs/results.md, "PBF's coarse grid"). 0 (the default): [MM13]'s iteration.
   int32_t coarse_grid;
-  int32_t coarse_iterations;  // the most conjugate-gradient iterations of its solve (it stops at 1e-3 of |b|)
+  int32_t coarse_iterations;  // the most conjugate-gradient iterations of its solve (it stops at 1e-2 of |b|)
 };
 
 // [BK15]'s defaults: eta = 0.01% and eta_v = 0.1% (section 5), at least 2 density iterations (SPlisHSPlasH's

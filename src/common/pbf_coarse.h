@@ -9,16 +9,20 @@
 // hierarchy of Mueller's "Hierarchical Position Based Dynamics" (2008) does for cloth. The correction is the
 // pressure projection of grid-based solvers (Foster and Fedkiw 2001; Bridson, "Fluid Simulation for Computer
 // Graphics", ch. 5) applied to the particles' displacements instead of their velocities:
-//   find u = grad phi with div u = C on the cells holding fluid, phi = 0 in cells of air (the free surface),
-//   u . n = 0 through walls (no flux),
+//   find p with div u = C, u = grad p / rho, on the cells holding fluid; p = 0 in cells of air (the free
+//   surface), u . n = 0 through walls (no flux),
 // where C is the cell's compressed volume fraction, sum_i w_ic max(C_i, 0) V_i / H^3 (V_i = m_i / rho0_i, w_ic
 // trilinear "cloud in cell" weights), so that moving each particle by u expands every cell by the volume it
-// is compressed by. Discretely (7-point Laplacian, cells of H): A phi = b with
-//   (A phi)_c = sum over the six neighbours n that are not solid of (phi_c - phi_n), phi_n = 0 in air,
+// is compressed by; as a pressure, p moves a light fluid more than a heavy one beside it, and a free cloud of
+// two fluids keeps its momentum (with u = grad p alike for both, a cloud of water and a fluid ten times
+// lighter changed its momentum by a fifth of what the solve moved, measured). Discretely (cells of H):
+// A p = b with
+//   (A p)_c = sum over the six faces f of c that are not walls of beta_f (p_c - p_n), p_n = 0 in air,
 //   b_c = -H^2 C_c,
-// A symmetric positive definite wherever the fluid touches air (otherwise only a constant, of zero gradient,
-// is undetermined). The particles move by u, trilinear between the cells' central-difference gradients;
-// the Jacobi iterations that follow remove what is left at the particles' scale.
+// beta_f = 1 / rho at the face (coarse_face; rho_c = the cell's mass over its volume). A is symmetric positive
+// definite wherever the fluid touches air (otherwise only a constant, of zero gradient, is undetermined). A
+// particle moves by u = grad p / rho, trilinear between the cells' own (coarse_displacement); the Jacobi
+// iterations that follow remove what is left at the particles' scale.
 //
 // Cells: the neighbour grid's domain (GridGeometry: its origin, and cells of h / 2, two to a coarse cell),
 // dense, so the cells' number is known on the host without reading the particles. A cell is solid where its
@@ -57,17 +61,19 @@ enum : int32_t { kCoarseAir = 0, kCoarseFluid = 1, kCoarseSolid = 2 };
 struct CoarseView {
   CoarseGrid g;
   unsigned long long* volume;       // sum w V / H^3, fixed point (kCoarseFixed)
+  unsigned long long* mass;         // sum w m / H^3 [kg/m^3], fixed point
   unsigned long long* compression;  // sum w max(C, 0) V / H^3, fixed point
   int32_t* flag;                    // kCoarseAir, kCoarseFluid or kCoarseSolid
-  float* phi;                       // the potential [m^2]
-  float* r;                         // the conjugate-gradient residual b - A phi
+  float* beta;                      // 1 / rho of the cell's fluid [m^3/kg] (0 in a wall or where none is)
+  float* pressure;                  // the pressure-like potential p [kg/m]
+  float* r;                         // the conjugate-gradient residual b - A p
   float* dir;                       // its search direction
   float* a_dir;                     // A dir
 };
 
 // Bytes of scratch memory a CoarseView of `cells` cells takes (coarse_view carves them, 8-byte aligned).
 inline std::size_t coarse_view_bytes(int64_t cells) {
-  return std::size_t(cells) * (2 * sizeof(unsigned long long) + sizeof(int32_t) + 4 * sizeof(float)) + 64;
+  return std::size_t(cells) * (3 * sizeof(unsigned long long) + sizeof(int32_t) + 5 * sizeof(float)) + 64;
 }
 
 inline CoarseView coarse_view(const CoarseGrid& g, void* scratch) {
@@ -75,9 +81,11 @@ inline CoarseView coarse_view(const CoarseGrid& g, void* scratch) {
   CoarseView v{};
   v.g = g;
   v.volume = static_cast<unsigned long long*>(scratch);
-  v.compression = v.volume + n;
-  v.phi = reinterpret_cast<float*>(v.compression + n);
-  v.r = v.phi + n;
+  v.mass = v.volume + n;
+  v.compression = v.mass + n;
+  v.beta = reinterpret_cast<float*>(v.compression + n);
+  v.pressure = v.beta + n;
+  v.r = v.pressure + n;
   v.dir = v.r + n;
   v.a_dir = v.dir + n;
   v.flag = reinterpret_cast<int32_t*>(v.a_dir + n);
@@ -150,45 +158,52 @@ SPH_HD inline int64_t coarse_index(const CoarseGrid& g, int32_t i, int32_t j, in
   return (int64_t(k) * g.ny + j) * g.nx + i;
 }
 
-// Calls f(cell, weight) for the (up to) eight cells whose centres surround x, inside the grid.
-template <class F>
-SPH_HD inline void for_each_coarse_corner(const CoarseGrid& g, Vec3 x, F&& f) {
-  const CoarseStencil s = coarse_stencil(g, x);
-  for (int32_t c = 0; c < 8; ++c) {
-    const int32_t di = c & 1, dj = (c >> 1) & 1, dk = c >> 2;
-    const int32_t i = s.i0 + di, j = s.j0 + dj, k = s.k0 + dk;
-    if (!coarse_inside(g, i, j, k)) continue;
-    const float w = (di ? s.tx : 1.0f - s.tx) * (dj ? s.ty : 1.0f - s.ty) * (dk ? s.tz : 1.0f - s.tz);
-    f(coarse_index(g, i, j, k), w);
-  }
-}
-
-// Particle i's volume and compressed volume, over H^3, into the cells around it (trilinear weights).
-// Inlet particles (age < 0) take no part.
-SPH_HD inline void coarse_deposit(const SimConstants& c, const CoarseView& v, const ParticleView& p, int32_t i) {
-  if (p.age[i] < 0.0f) return;
-  const FluidConstants& f = c.fluids[p.fluid[i]];
-  const float H = v.g.size;
-  const float share = f.mass / (f.rest_density * H * H * H);  // V_i / H^3
-  const float compressed = share * p.solver_error[i];         // max(C_i, 0): PBF's store_density
-  for_each_coarse_corner(v.g, p.pos[i], [&](int64_t cell, float w) {
-    add_fixed(v.volume + cell, w * share);
-    if (compressed > 0.0f) add_fixed(v.compression + cell, w * compressed);
-  });
-}
-
-// Cell q's kind, and the solve's start: phi = 0, r = dir = b.
-SPH_HD inline void coarse_classify(const SimConstants& c, const CoarseView& v, int64_t q) {
+// Cell q's start: no fluid, and solid where its centre lies where the scene's shapes keep the fluid out.
+SPH_HD inline void coarse_clear(const SimConstants& c, const CoarseView& v, int64_t q) {
   const CoarseGrid& g = v.g;
   const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
   const Vec3 centre{g.origin.x + (float(i) + 0.5f) * g.size, g.origin.y + (float(j) + 0.5f) * g.size,
                     g.origin.z + (float(k) + 0.5f) * g.size};
   bool solid = false;
   for (int32_t s = 0; s < c.num_shapes; ++s) solid = solid || shape_excludes(c.shapes[s], centre);
-  const bool fluid = !solid && from_fixed(v.volume[q]) >= 0.5f;
-  v.flag[q] = solid ? kCoarseSolid : (fluid ? kCoarseFluid : kCoarseAir);
+  v.flag[q] = solid ? kCoarseSolid : kCoarseAir;
+  v.volume[q] = 0ull;
+  v.mass[q] = 0ull;
+  v.compression[q] = 0ull;
+}
+
+// Particle i's volume, mass and compressed volume, over H^3, into the eight cells around it (trilinear
+// weights; a wall cell's share is lost, so cells along walls read a little less full). Inlet particles (age <
+// 0) take no part.
+SPH_HD inline void coarse_deposit(const SimConstants& c, const CoarseView& v, const ParticleView& p, int32_t i) {
+  if (p.age[i] < 0.0f) return;
+  const FluidConstants& f = c.fluids[p.fluid[i]];
+  const float H = v.g.size;
+  const float share = f.mass / (f.rest_density * H * H * H);  // V_i / H^3
+  const float compressed = share * p.solver_error[i];         // max(C_i, 0): PBF's store_density
+  const CoarseStencil s = coarse_stencil(v.g, p.pos[i]);
+  for (int32_t corner = 0; corner < 8; ++corner) {
+    const int32_t di = corner & 1, dj = (corner >> 1) & 1, dk = corner >> 2;
+    const int32_t a = s.i0 + di, b = s.j0 + dj, e = s.k0 + dk;
+    if (!coarse_inside(v.g, a, b, e)) continue;
+    const int64_t cell = coarse_index(v.g, a, b, e);
+    const float w = (di ? s.tx : 1.0f - s.tx) * (dj ? s.ty : 1.0f - s.ty) * (dk ? s.tz : 1.0f - s.tz);
+    add_fixed(v.volume + cell, w * share);
+    add_fixed(v.mass + cell, w * share * f.rest_density);
+    if (compressed > 0.0f) add_fixed(v.compression + cell, w * compressed);
+  }
+}
+
+// Cell q's kind (fluid where the particles fill at least half of it, unless solid), its fluid's 1 / rho, and
+// the solve's start: p = 0, r = dir = b.
+SPH_HD inline void coarse_classify(const CoarseView& v, int64_t q) {
+  const CoarseGrid& g = v.g;
+  const float volume = from_fixed(v.volume[q]), mass = from_fixed(v.mass[q]);
+  const bool fluid = v.flag[q] != kCoarseSolid && volume >= 0.5f;
+  if (v.flag[q] != kCoarseSolid) v.flag[q] = fluid ? kCoarseFluid : kCoarseAir;
+  v.beta[q] = v.flag[q] != kCoarseSolid && mass > 0.0f ? volume / mass : 0.0f;
   const float b = fluid ? -(g.size * g.size) * from_fixed(v.compression[q]) : 0.0f;
-  v.phi[q] = 0.0f;
+  v.pressure[q] = 0.0f;
   v.r[q] = b;
   v.dir[q] = b;
 }
@@ -203,7 +218,7 @@ SPH_HD inline float coarse_seen(const CoarseView& v, const float* x, int32_t a, 
 }
 
 // 1 for a fluid cell with a face on air (or on the grid's edge): where the fluid can expand. Without any, A
-// phi = b fixes phi only up to a constant, and has a solution only for b of zero sum.
+// p = b fixes p only up to a constant, and has a solution only for b of zero sum.
 SPH_HD inline float coarse_open(const CoarseView& v, int64_t q) {
   if (v.flag[q] != kCoarseFluid) return 0.0f;
   const CoarseGrid& g = v.g;
@@ -216,34 +231,49 @@ SPH_HD inline float coarse_open(const CoarseView& v, int64_t q) {
   return 0.0f;
 }
 
-// (A x)_q for a fluid cell, 0 elsewhere.
+// The face's coefficient between fluid cell q and its neighbour (a, b, c): 1 / rho at the face, the inverse of
+// the two cells' mean density between two fluid cells, q's own 1 / rho towards air; 0 through a wall (no flux).
+SPH_HD inline float coarse_face(const CoarseView& v, int64_t q, int32_t a, int32_t b, int32_t c) {
+  if (!coarse_inside(v.g, a, b, c)) return v.beta[q];
+  const int64_t n = coarse_index(v.g, a, b, c);
+  const int32_t f = v.flag[n];
+  if (f == kCoarseSolid) return 0.0f;
+  if (f == kCoarseAir) return v.beta[q];
+  const float bq = v.beta[q], bn = v.beta[n];
+  return bq + bn > 0.0f ? 2.0f * bq * bn / (bq + bn) : 0.0f;
+}
+
+// (A x)_q = sum over the six faces of beta_f (x_q - x_n), x_n = 0 in air, for a fluid cell; 0 elsewhere.
 SPH_HD inline float coarse_apply(const CoarseView& v, const float* x, int64_t q) {
   if (v.flag[q] != kCoarseFluid) return 0.0f;
   const CoarseGrid& g = v.g;
   const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
   const float xq = x[q];
-  const float sum = coarse_seen(v, x, i - 1, j, k, xq) + coarse_seen(v, x, i + 1, j, k, xq) +
-                    coarse_seen(v, x, i, j - 1, k, xq) + coarse_seen(v, x, i, j + 1, k, xq) +
-                    coarse_seen(v, x, i, j, k - 1, xq) + coarse_seen(v, x, i, j, k + 1, xq);
-  return 6.0f * xq - sum;
+  const int32_t at[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
+  float sum = 0.0f;
+  for (int32_t n = 0; n < 6; ++n)
+    sum += coarse_face(v, q, at[n][0], at[n][1], at[n][2]) * (xq - coarse_seen(v, x, at[n][0], at[n][1], at[n][2], xq));
+  return sum;
 }
 
-// grad phi at cell q's centre [m]: central differences, phi = 0 in air, mirrored behind walls.
+// grad p at cell q's centre [kg/m^2]: central differences, p = 0 in air, mirrored behind walls.
 SPH_HD inline Vec3 coarse_gradient(const CoarseView& v, int64_t q) {
   const CoarseGrid& g = v.g;
   const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
-  const float own = v.flag[q] == kCoarseFluid ? v.phi[q] : 0.0f;
+  const float own = v.flag[q] == kCoarseFluid ? v.pressure[q] : 0.0f;
   const float s = 0.5f / g.size;
-  const float* x = v.phi;
+  const float* x = v.pressure;
   return Vec3{s * (coarse_seen(v, x, i + 1, j, k, own) - coarse_seen(v, x, i - 1, j, k, own)),
               s * (coarse_seen(v, x, i, j + 1, k, own) - coarse_seen(v, x, i, j - 1, k, own)),
               s * (coarse_seen(v, x, i, j, k + 1, own) - coarse_seen(v, x, i, j, k - 1, own))};
 }
 
-// The displacement u at x [m]: the gradients of the cells around x that are not solid, trilinear, their
-// weights renormalised: beside a wall the fluid's own gradient, so that a layer along a wall moves with the
-// fluid beside it (a wall's zero taken into the weights sheared that layer every step, and a resting column
-// never came to rest).
+// The displacement u at x [m]: each surrounding cell's own u_c = grad p / rho_c, trilinear over the cells that
+// hold fluid (not solid, some mass), their weights renormalised. Beside a wall the fluid's own u: a wall's zero
+// taken into the weights lifted the layer along each wall less than the fluid beside it, every step, and a
+// resting column never came to rest. (Tried and not kept, docs/results.md: grad p trilinear divided by the
+// particle's own rho0, which lifted a light fluid off the water under it; u on the cells' faces, as a MAC
+// grid has it, which held two fluids at rest but set a column's surface sloshing.)
 SPH_HD inline Vec3 coarse_displacement(const CoarseView& v, Vec3 x) {
   const CoarseStencil s = coarse_stencil(v.g, x);
   Vec3 u{0.0f, 0.0f, 0.0f};
@@ -253,9 +283,10 @@ SPH_HD inline Vec3 coarse_displacement(const CoarseView& v, Vec3 x) {
     const int32_t i = s.i0 + di, j = s.j0 + dj, k = s.k0 + dk;
     if (!coarse_inside(v.g, i, j, k)) continue;
     const int64_t cell = coarse_index(v.g, i, j, k);
-    if (v.flag[cell] == kCoarseSolid) continue;
+    const float beta = v.beta[cell];
+    if (!(beta > 0.0f)) continue;
     const float w = (di ? s.tx : 1.0f - s.tx) * (dj ? s.ty : 1.0f - s.ty) * (dk ? s.tz : 1.0f - s.tz);
-    u += w * coarse_gradient(v, cell);
+    u += (w * beta) * coarse_gradient(v, cell);
     total += w;
   }
   return total > 0.0f ? (1.0f / total) * u : u;

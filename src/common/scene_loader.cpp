@@ -389,6 +389,17 @@ Scene read_scene(const json& root, const std::string& source) {
                            "(allowed: \"solver\": \"wcsph\" or \"dfsph\")");
   // The coarse grid's walls are the analytic shapes (pbf_coarse.h, shape_excludes): boundary particles would
   // count as air there, and the projection would push the fluid into them.
+  // Between fluids of different density the projection stirred the interface: two_layers (1000 and 100
+  // kg/m^3) mixed within 0.5 s (docs/results.md, "PBF's coarse grid").
+  if (s.solver == Solver::Pbf && s.pbf.coarse_grid != 0)
+    for (const FluidSpec& f : s.fluids)
+      if (f.rest_density != s.fluids.front().rest_density) {
+        std::ostringstream os;
+        os << "the coarse grid is for fluids of one rest density, and \"" << s.fluids.front().name << "\" has "
+           << s.fluids.front().rest_density << " kg/m^3 where \"" << f.name << "\" has " << f.rest_density
+           << " (between them it mixes the interface); set pbf.coarse_grid false";
+        fail(source, "pbf.coarse_grid", os.str());
+      }
   if (s.solver == Solver::Pbf && s.pbf.coarse_grid != 0 && s.boundary_particles)
     fail(source, "pbf.coarse_grid", "the coarse grid knows the walls of \"boundaries\" (mirror or penalty walls), not walls "
                                     "of boundary particles: set \"sph\": {\"walls\": \"mirror\"} or pbf.coarse_grid false");

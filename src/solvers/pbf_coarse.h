@@ -1,10 +1,10 @@
 // PBF's coarse-grid correction (pbf.coarse_grid; the formulas and why: src/common/pbf_coarse.h): its loops in
 // order over the execution interface (execution.h), called by the constraint solve (pbf.h) once a step,
 // after the first density:
-//   clear the cells; deposit every particle's volume and compression (fixed point, atomic: any order gives
-//   the same bits); classify the cells (solid, fluid, air) and set b; conjugate gradients on A phi = b (two
+//   clear the cells and mark the solid ones; deposit every particle's volume, mass and compression (fixed
+//   point, atomic: any order gives the same bits); classify the others (fluid, air) and set b; conjugate gradients on A p = b (two
 //   deterministic sums an iteration, reduction.h) until |r| <= kCoarseTolerance |b| or pbf.coarse_iterations;
-//   every particle's displacement grad phi into delta_pos, which pbf.h applies as a Jacobi iteration's
+//   every particle's displacement u = grad p / rho into delta_pos, which pbf.h applies as a Jacobi iteration's
 //   correction (then the shapes, the walls' spacing, the boundary particles).
 #pragma once
 
@@ -18,14 +18,13 @@ namespace sph {
 namespace pbf {
 
 // The conjugate-gradient solve stops once the residual's norm is this share of b's.
-constexpr double kCoarseTolerance = 1e-3;
+constexpr double kCoarseTolerance = 1e-2;
 
+template <class C>
 struct CoarseClearFn {
+  C c;
   CoarseView v;
-  SPH_HD void operator()(int32_t q) const {
-    v.volume[q] = 0ull;
-    v.compression[q] = 0ull;
-  }
+  SPH_KERNEL_FN void operator()(int32_t q) const { coarse_clear(*c, v, q); }
 };
 
 template <class C>
@@ -36,11 +35,9 @@ struct CoarseDepositFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { coarse_deposit(*c, v, p, i); }
 };
 
-template <class C>
 struct CoarseClassifyFn {
-  C c;
   CoarseView v;
-  SPH_KERNEL_FN void operator()(int32_t q) const { coarse_classify(*c, v, q); }
+  SPH_HD void operator()(int32_t q) const { coarse_classify(v, q); }
 };
 
 struct CoarseApplyFn {  // a_dir = A dir
@@ -48,11 +45,11 @@ struct CoarseApplyFn {  // a_dir = A dir
   SPH_HD void operator()(int32_t q) const { v.a_dir[q] = coarse_apply(v, v.dir, q); }
 };
 
-struct CoarseStepFn {  // phi += alpha dir, r -= alpha A dir
+struct CoarseStepFn {  // p += alpha dir, r -= alpha A dir
   CoarseView v;
   float alpha;
   SPH_HD void operator()(int32_t q) const {
-    v.phi[q] += alpha * v.dir[q];
+    v.pressure[q] += alpha * v.dir[q];
     v.r[q] -= alpha * v.a_dir[q];
   }
 };
@@ -90,7 +87,7 @@ struct ProductOf {
   SPH_HD double operator()(int32_t q) const { return double(a[q]) * double(b[q]); }
 };
 
-// delta_pos = u(x), the displacement at x (the move is ApplyCorrectionFn's, pbf.h: it adds delta_pos and
+// delta_pos = u(x), the displacement (the move is ApplyCorrectionFn's, pbf.h: it adds delta_pos and
 // collides with the shapes; in one loop with this one, the shapes' arrays took a 48-byte stack frame on sm_90).
 struct CoarseDisplacementFn {
   CoarseView v;
@@ -109,12 +106,12 @@ int32_t coarse_correction(Exec& x) {
   const CoarseGrid g = coarse_grid_of(c.grid);
   const int32_t cells = int32_t(coarse_cell_count(g));
   const CoarseView v = coarse_view(g, x.scratch(coarse_view_bytes(cells)));
-  x.for_index(cells, CoarseClearFn{v});
+  x.for_index(cells, CoarseClearFn<C>{x.constants(), v});
   x.for_each(CoarseDepositFn<C>{x.constants(), v, x.particles()});
-  x.for_index(cells, CoarseClassifyFn<C>{x.constants(), v});
+  x.for_index(cells, CoarseClassifyFn{v});
   if (x.sum(cells, CoarseOpenOf{v}) == 0.0) {
     // A fluid that touches no air (a closed box filled to its lid) cannot expand: b less its mean over the
-    // fluid cells, so that the solve only evens the compression out (without this, the constant part of phi
+    // fluid cells, so that the solve only evens the compression out (without this, the constant part of p
     // grew without bound and its rounding moved the particles: a full box blew up within 3 steps).
     const double fluid = x.sum(cells, CoarseFluidOf{v});
     if (fluid > 0.0) x.for_index(cells, CoarseShiftFn{v, float(-x.sum(cells, ValuesOf<float>{v.r}) / fluid)});
