@@ -139,7 +139,7 @@ void check_jet_inlets(const Scene& scene, const std::vector<JetEmitter>& jets, c
   }
 }
 
-// The dense coarse grid takes 36 bytes a cell: 2^23 cells, 300 MB.
+// The dense coarse grid takes 52 bytes a cell (coarse_view_bytes): 2^23 cells, 436 MB.
 constexpr int64_t kMaxCoarseCells = int64_t(1) << 23;
 
 void check_coarse_grid(const Scene& scene, const GridGeometry& grid, std::vector<std::string>& report) {
