@@ -107,3 +107,23 @@ TEST_CASE("PBF's coarse grid leaves a fluid that touches no air as the iteration
   CHECK(std::isfinite(with));
   CHECK(with <= without);
 }
+
+TEST_CASE("PBF's coarse grid reports a solve that stops at its iteration cap", "[solvers][pbf][coarse]") {
+  // Issue 12: a solve that does not converge never continues silently. The summary's coarse_grid_capped_steps
+  // (run_report.cpp) counts the steps whose conjugate-gradient solve stopped at pbf.coarse_iterations.
+  const auto run = [](const std::string& cap) {
+    sph::Simulation sim(scene_file("hydrostatic_tank.json", {"solver=pbf", "time_step.mode=fixed", "time_step.dt=0.004",
+                                                             "pbf.coarse_grid=true", "pbf.coarse_iterations=" + cap}),
+                        cpu_factory(), 0.1);
+    while (sim.time() < 0.1 - 1e-9) sim.advance();
+    return sim.solver_totals();
+  };
+  const sph::SolverTotals three = run("3"), fifty = run("50");
+  INFO("cap 3: " << three.coarse_capped_steps << " of " << three.steps << " steps capped; cap 50: "
+       << fifty.coarse_capped_steps << ", at most " << fifty.max_coarse_iterations << " iterations a step");
+  CHECK(three.coarse_capped_steps == three.steps);
+  CHECK(three.max_coarse_iterations == 3);
+  CHECK(fifty.coarse_capped_steps == 0);
+  CHECK(fifty.max_coarse_iterations > 3);
+  CHECK(fifty.max_coarse_iterations < 50);
+}

@@ -51,6 +51,17 @@ void print_solver_summary(const Simulation& sim) {
   if (scene.solver != Solver::Wcsph)
     std::cout << "viscous_substeps: max " << t.max_viscous_substeps << ", sub-cycled steps " << t.substepped_steps
               << " of " << t.steps << "\n";
+  // PBF's coarse grid: its conjugate-gradient solve a step, and the steps it stopped at its cap (its density
+  // error then shows in solver_density_error_max: the Jacobi iterations take what it left).
+  if (scene.solver == Solver::Pbf && scene.pbf.coarse_grid != 0) {
+    std::cout << "coarse_grid_iterations: mean " << double(t.coarse_iterations) / steps << ", max "
+              << t.max_coarse_iterations << "\n"
+              << "coarse_grid_capped_steps: " << t.coarse_capped_steps << "\n";
+    if (t.coarse_capped_steps > 0)
+      std::cerr << "warning: PBF's coarse grid stopped at pbf.coarse_iterations = " << scene.pbf.coarse_iterations
+                << " above its tolerance (1% of its starting residual) in " << t.coarse_capped_steps << " of " << t.steps
+                << " steps; raise pbf.coarse_iterations\n";
+  }
   if (t.density_capped_steps > 0)
     std::cerr << "warning: the " << (dfsph ? "density solver" : "constraint solve") << " did not converge in "
               << t.density_capped_steps << " of " << t.steps << " steps: it stopped at "

@@ -83,6 +83,8 @@ struct SolverStats {
   bool density_capped = false;
   bool divergence_capped = false;
   int32_t viscous_substeps = 1;       // DFSPH: sub-steps of the non-pressure forces, PBF: of its viscosity (viscous_limit.h)
+  int32_t coarse_iterations = 0;      // PBF's coarse grid (pbf.coarse_grid): conjugate-gradient iterations
+  bool coarse_capped = false;         // it stopped at pbf.coarse_iterations above its tolerance
 };
 
 // Accumulated wall time per phase, for the runner's summary, the benchmark and the demo panel.

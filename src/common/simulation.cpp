@@ -43,6 +43,9 @@ void SolverTotals::add(const SolverStats& s) {
   max_density_error = std::max(max_density_error, s.density_error);
   substepped_steps += s.viscous_substeps > 1 ? 1 : 0;
   max_viscous_substeps = std::max(max_viscous_substeps, s.viscous_substeps);
+  coarse_iterations += s.coarse_iterations;
+  max_coarse_iterations = std::max(max_coarse_iterations, s.coarse_iterations);
+  coarse_capped_steps += s.coarse_capped ? 1 : 0;
 }
 
 Simulation::Simulation(const Scene& scene, const BackendFactory& factory, double run_time, const Frame* restart)

@@ -70,6 +70,9 @@ struct SolverTotals {
   double max_density_error = 0.0;        // largest end-of-solve mean compression of any step
   long substepped_steps = 0;             // DFSPH, PBF: steps that sub-cycled the non-pressure forces (PBF: viscosity)
   int32_t max_viscous_substeps = 1;
+  long coarse_iterations = 0;            // PBF's coarse grid: conjugate-gradient iterations, summed
+  int32_t max_coarse_iterations = 0;
+  long coarse_capped_steps = 0;          // steps whose coarse solve stopped at pbf.coarse_iterations
   void add(const SolverStats& s);
 };
 

@@ -265,9 +265,10 @@ void after_move(Exec& x) {
 
 // The constraint iterations: density, error and lambda in one pass, then (unless done) Delta p and its
 // application; the last pass computes the density only.
-// Returns the iterations made; error: the mean compression at the end; capped: a tolerance was set and not met.
+// Records in stats the iterations made, the mean compression at the end (density_error), whether a tolerance
+// was set and not met (density_capped), and the coarse grid's solve.
 template <class Exec>
-int32_t solve(Exec& x, float dt, double& error, bool& capped) {
+void solve(Exec& x, float dt, SolverStats& stats) {
   using C = typename Exec::Constants;
   const PbfConstants& s = x.host_constants().pbf;
   const ParticleView p = x.particles();
@@ -281,14 +282,14 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
     if (last) x.for_each(DensityFn<C>{x.constants(), g, p});
     else x.for_each(DensityLambdaFn<C>{x.constants(), g, p});
     if (it == 0 && !last && s.coarse_grid) {  // pbf_coarse.h, then the density and lambda it leaves
-      coarse_correction(x);
+      stats.coarse_iterations = coarse_correction(x, stats.coarse_capped);
       x.for_each(ApplyCorrectionFn<C>{x.constants(), p, dt, 1.0f, 1.0f});
       after_move(x);
       x.for_each(DensityLambdaFn<C>{x.constants(), g, p});
     }
     if (last || s.density_tolerance > 0.0f) {
-      error = mean_of(x, p.solver_error, n);
-      if (last || error <= double(s.density_tolerance)) break;
+      stats.density_error = mean_of(x, p.solver_error, n);
+      if (last || stats.density_error <= double(s.density_tolerance)) break;
     }
     x.for_each(CorrectionFn<C>{x.constants(), g, p});
     omega = it == 0 ? 1.0f : chebyshev_next_weight(s.chebyshev, omega);
@@ -296,8 +297,8 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
     after_move(x);
     ++it;
   }
-  capped = s.density_tolerance > 0.0f && error > double(s.density_tolerance);
-  return it;
+  stats.density_capped = s.density_tolerance > 0.0f && stats.density_error > double(s.density_tolerance);
+  stats.density_iterations = it;
 }
 
 // Runs phase ph of a PBF step (one of kPbfPhases) on the back end's Exec; the solve records what it did in
@@ -319,7 +320,7 @@ void run_phase(Exec& x, Phase ph, float dt, SolverStats& stats) {
     }
     case Phase::BuildGrid: x.build_grid(); return;
     case Phase::ConstraintSolve:
-      stats.density_iterations = solve(x, dt, stats.density_error, stats.density_capped);
+      solve(x, dt, stats);
       return;
     case Phase::Correct: x.for_each(VelocityFn{x.particles(), dt}); return;
     case Phase::Forces: {

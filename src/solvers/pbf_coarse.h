@@ -2,8 +2,9 @@
 // order over the execution interface (execution.h), called by the constraint solve (pbf.h) once a step,
 // after the first density:
 //   clear the cells and mark the solid ones; deposit every particle's volume, mass and compression (fixed
-//   point, atomic: any order gives the same bits); classify the others (fluid, air) and set b; conjugate gradients on A p = b (two
-//   deterministic sums an iteration, reduction.h) until |r| <= kCoarseTolerance |b| or pbf.coarse_iterations;
+//   point, atomic: any order gives the same bits); classify the others (fluid, air) and set b; conjugate
+//   gradients on A p = b (two deterministic sums an iteration, reduction.h) until |r| <= kCoarseTolerance |b|
+//   or pbf.coarse_iterations (the run's summary reports the steps that stop there);
 //   every particle's displacement u = grad p / rho into delta_pos, which pbf.h applies as a Jacobi iteration's
 //   correction (then the shapes, the walls' spacing, the boundary particles).
 #pragma once
@@ -98,9 +99,10 @@ struct CoarseDisplacementFn {
 };
 
 // One coarse-grid solve from the compression p.solver_error (store_density): the displacement of every
-// particle into p.delta_pos. Returns the conjugate-gradient iterations made.
+// particle into p.delta_pos. Returns the conjugate-gradient iterations made; capped: it stopped at
+// pbf.coarse_iterations above its tolerance.
 template <class Exec>
-int32_t coarse_correction(Exec& x) {
+int32_t coarse_correction(Exec& x, bool& capped) {
   using C = typename Exec::Constants;
   const SimConstants& c = x.host_constants();
   const CoarseGrid g = coarse_grid_of(c.grid);
@@ -128,6 +130,7 @@ int32_t coarse_correction(Exec& x) {
     x.for_index(cells, CoarseDirectionFn{v, float(next / rr)});
     rr = next;
   }
+  capped = rr > stop && k == c.pbf.coarse_iterations;
   x.for_each(CoarseDisplacementFn{v, x.particles()});
   return k;
 }
