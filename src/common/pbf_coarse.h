@@ -164,11 +164,34 @@ SPH_HD inline int64_t coarse_index(const CoarseGrid& g, int32_t i, int32_t j, in
   return (int64_t(k) * g.ny + j) * g.nx + i;
 }
 
+struct CoarseCell {
+  int32_t i, j, k;
+};
+
+// Cell q's coordinates (coarse_index's inverse).
+SPH_HD inline CoarseCell coarse_cell(const CoarseGrid& g, int64_t q) {
+  return CoarseCell{int32_t(q % g.nx), int32_t((q / g.nx) % g.ny), int32_t(q / (int64_t(g.nx) * g.ny))};
+}
+
+// Face neighbour n (0 to 5: -x, +x, -y, +y, -z, +z) of cell a.
+SPH_HD inline CoarseCell coarse_neighbour(CoarseCell a, int32_t n) {
+  const int32_t step = n % 2 == 0 ? -1 : 1;
+  return CoarseCell{a.i + (n / 2 == 0 ? step : 0), a.j + (n / 2 == 1 ? step : 0), a.k + (n / 2 == 2 ? step : 0)};
+}
+
+// Corner c (0 to 7) of a stencil: its cell and trilinear weight w.
+SPH_HD inline CoarseCell coarse_corner(const CoarseStencil& s, int32_t c, float& w) {
+  const int32_t di = c & 1, dj = (c >> 1) & 1, dk = c >> 2;
+  w = (di ? s.tx : 1.0f - s.tx) * (dj ? s.ty : 1.0f - s.ty) * (dk ? s.tz : 1.0f - s.tz);
+  return CoarseCell{s.i0 + di, s.j0 + dj, s.k0 + dk};
+}
+
 // Cell q's start: no fluid; the share of it the scene's shapes leave to the fluid (3 x 3 x 3 points, at a
 // sixth, half and five sixths of the cell along each axis), and solid where that is less than half.
 SPH_HD inline void coarse_clear(const SimConstants& c, const CoarseView& v, int64_t q) {
   const CoarseGrid& g = v.g;
-  const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
+  const CoarseCell cq = coarse_cell(g, q);
+  const int32_t i = cq.i, j = cq.j, k = cq.k;
   int32_t open = 0;
   for (int32_t p = 0; p < 27; ++p) {
     const Vec3 x{g.origin.x + (float(i) + float(2 * (p % 3) + 1) / 6.0f) * g.size,
@@ -196,11 +219,10 @@ SPH_HD inline void coarse_deposit(const SimConstants& c, const CoarseView& v, co
   const float compressed = share * p.solver_error[i];         // max(C_i, 0): PBF's store_density
   const CoarseStencil s = coarse_stencil(v.g, p.pos[i]);
   for (int32_t corner = 0; corner < 8; ++corner) {
-    const int32_t di = corner & 1, dj = (corner >> 1) & 1, dk = corner >> 2;
-    const int32_t a = s.i0 + di, b = s.j0 + dj, e = s.k0 + dk;
-    if (!coarse_inside(v.g, a, b, e)) continue;
-    const int64_t cell = coarse_index(v.g, a, b, e);
-    const float w = (di ? s.tx : 1.0f - s.tx) * (dj ? s.ty : 1.0f - s.ty) * (dk ? s.tz : 1.0f - s.tz);
+    float w;
+    const CoarseCell a = coarse_corner(s, corner, w);
+    if (!coarse_inside(v.g, a.i, a.j, a.k)) continue;
+    const int64_t cell = coarse_index(v.g, a.i, a.j, a.k);
     add_fixed(v.volume + cell, w * share);
     add_fixed(v.mass + cell, w * share * f.rest_density);
     if (compressed > 0.0f) add_fixed(v.compression + cell, w * compressed);
@@ -238,11 +260,11 @@ SPH_HD inline float coarse_seen(const CoarseView& v, const float* x, int32_t a, 
 SPH_HD inline float coarse_open(const CoarseView& v, int64_t q) {
   if (v.flag[q] != kCoarseFluid) return 0.0f;
   const CoarseGrid& g = v.g;
-  const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
-  const int32_t at[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
-  for (int32_t n = 0; n < 6; ++n) {
-    if (!coarse_inside(g, at[n][0], at[n][1], at[n][2])) return 1.0f;
-    if (v.flag[coarse_index(g, at[n][0], at[n][1], at[n][2])] == kCoarseAir) return 1.0f;
+  const CoarseCell cq = coarse_cell(g, q);
+  for (int32_t m = 0; m < 6; ++m) {
+    const CoarseCell n = coarse_neighbour(cq, m);
+    if (!coarse_inside(g, n.i, n.j, n.k)) return 1.0f;
+    if (v.flag[coarse_index(g, n.i, n.j, n.k)] == kCoarseAir) return 1.0f;
   }
   return 0.0f;
 }
@@ -262,20 +284,21 @@ SPH_HD inline float coarse_face(const CoarseView& v, int64_t q, int32_t a, int32
 // (A x)_q = sum over the six faces of beta_f (x_q - x_n), x_n = 0 in air, for a fluid cell; 0 elsewhere.
 SPH_HD inline float coarse_apply(const CoarseView& v, const float* x, int64_t q) {
   if (v.flag[q] != kCoarseFluid) return 0.0f;
-  const CoarseGrid& g = v.g;
-  const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
+  const CoarseCell cq = coarse_cell(v.g, q);
   const float xq = x[q];
-  const int32_t at[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
   float sum = 0.0f;
-  for (int32_t n = 0; n < 6; ++n)
-    sum += coarse_face(v, q, at[n][0], at[n][1], at[n][2]) * (xq - coarse_seen(v, x, at[n][0], at[n][1], at[n][2], xq));
+  for (int32_t m = 0; m < 6; ++m) {
+    const CoarseCell n = coarse_neighbour(cq, m);
+    sum += coarse_face(v, q, n.i, n.j, n.k) * (xq - coarse_seen(v, x, n.i, n.j, n.k, xq));
+  }
   return sum;
 }
 
 // grad p at cell q's centre [kg/m^2]: central differences, p = 0 in air, mirrored behind walls.
 SPH_HD inline Vec3 coarse_gradient(const CoarseView& v, int64_t q) {
   const CoarseGrid& g = v.g;
-  const int32_t i = int32_t(q % g.nx), j = int32_t((q / g.nx) % g.ny), k = int32_t(q / (int64_t(g.nx) * g.ny));
+  const CoarseCell cq = coarse_cell(g, q);
+  const int32_t i = cq.i, j = cq.j, k = cq.k;
   const float own = v.flag[q] == kCoarseFluid ? v.pressure[q] : 0.0f;
   const float s = 0.5f / g.size;
   const float* x = v.pressure;
@@ -294,14 +317,13 @@ SPH_HD inline Vec3 coarse_displacement(const CoarseView& v, Vec3 x) {
   const CoarseStencil s = coarse_stencil(v.g, x);
   Vec3 u{0.0f, 0.0f, 0.0f};
   float total = 0.0f;
-  for (int32_t c = 0; c < 8; ++c) {
-    const int32_t di = c & 1, dj = (c >> 1) & 1, dk = c >> 2;
-    const int32_t i = s.i0 + di, j = s.j0 + dj, k = s.k0 + dk;
-    if (!coarse_inside(v.g, i, j, k)) continue;
-    const int64_t cell = coarse_index(v.g, i, j, k);
+  for (int32_t corner = 0; corner < 8; ++corner) {
+    float w;
+    const CoarseCell a = coarse_corner(s, corner, w);
+    if (!coarse_inside(v.g, a.i, a.j, a.k)) continue;
+    const int64_t cell = coarse_index(v.g, a.i, a.j, a.k);
     const float beta = v.beta[cell];
     if (!(beta > 0.0f)) continue;
-    const float w = (di ? s.tx : 1.0f - s.tx) * (dj ? s.ty : 1.0f - s.ty) * (dk ? s.tz : 1.0f - s.tz);
     u += (w * beta) * coarse_gradient(v, cell);
     total += w;
   }

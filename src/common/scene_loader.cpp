@@ -387,8 +387,6 @@ Scene read_scene(const json& root, const std::string& source) {
   if (!s.bodies.empty() && s.solver == Solver::Pbf)
     fail(source, "bodies", "rigid bodies are coupled to the wcsph and dfsph solvers only so far, not to \"pbf\" "
                            "(allowed: \"solver\": \"wcsph\" or \"dfsph\")");
-  // The coarse grid's walls are the analytic shapes (pbf_coarse.h, shape_excludes): boundary particles would
-  // count as air there, and the projection would push the fluid into them.
   // Between fluids of different density the projection stirred the interface: two_layers (1000 and 100
   // kg/m^3) mixed within 0.5 s (docs/results.md, "PBF's coarse grid").
   if (s.solver == Solver::Pbf && s.pbf.coarse_grid != 0)
@@ -400,6 +398,8 @@ Scene read_scene(const json& root, const std::string& source) {
            << " (between them it mixes the interface); set pbf.coarse_grid false";
         fail(source, "pbf.coarse_grid", os.str());
       }
+  // The coarse grid's walls are the analytic shapes (pbf_coarse.h, shape_excludes): boundary particles would
+  // count as air there, and the projection would push the fluid into them.
   if (s.solver == Solver::Pbf && s.pbf.coarse_grid != 0 && s.boundary_particles)
     fail(source, "pbf.coarse_grid", "the coarse grid knows the walls of \"boundaries\" (mirror or penalty walls), not walls "
                                     "of boundary particles: set \"sph\": {\"walls\": \"mirror\"} or pbf.coarse_grid false");
