@@ -12,18 +12,21 @@
 // Walls: with mirror walls (sph.walls = "mirror") the neighbours' wall ghosts (mirror_walls.h) stand for the
 // fluid beyond the wall, each the image of its particle: it adds its mass to the density and pushes with its
 // particle's stiffness as the particle would (a_i -= m_b (kappa_i / rho_i + kappa_b / rho_b) grad W_ib, so
-// the wall holds a hydrostatic column). In the density rate and in alpha the ghosts are at rest (alpha counts
-// them in |sum m grad W|^2, not among the neighbours that move in response), except the ghosts of i itself:
-// they move with v_i mirrored (mirror_velocity) in the rate, and since they also push with kappa_i twice,
-// d(D rho_i / Dt) / d kappa_i takes their gradient twice in that sum. Measured (hydrostatic_tank.json,
-// 2026-11-30): with every ghost at rest a particle in a corner of the floor, whose seven images move when it
-// does, rattled along the diagonal at up to 0.67 m/s, its density swinging by up to 19%; with its own images
-// moving, the fastest particle after 0.5 s moves at about 0.02 m/s. Every ghost moving with its particle in
-// the rate calmed the column too, but the dam break with mirror walls then blew up as its front reached the
-// far wall's floor edge (0.29 s): the moving ghosts of other particles add terms to d(D rho_i / Dt) /
-// d kappa_i that alpha does not hold. Earlier: ghosts moving in the rate with alpha unchanged blew the column
-// up within 0.01 s; ghosts that pushed with kappa_i alone gave the wall no pressure gradient, so the column's
-// edges, with a quarter of their neighbours real, were squeezed up at 1 m/s.
+// the wall holds a hydrostatic column). In the density rate every ghost moves with its particle's velocity
+// mirrored (mirror_velocity), as the fluid beyond the wall would. alpha, the inverse of d(D rho_i / Dt) /
+// d kappa_i, holds what that adds: i's own images push with kappa_i twice and move with i, so their
+// gradient counts twice in |sum m grad W|^2; a neighbour j that kappa_i pushes (by m grad W_ij) carries its
+// images along, so each image g of j adds (m grad W_ij mirrored) . (m grad W_ig) to the second sum. (What
+// kappa_i's own images push on j is left out, as [BK15] leaves out j's other neighbours.) Measured
+// (2026-12-02, the rayleigh_taylor slab with one fluid, 80 particles tall between walls 4 particles apart):
+// with only i's own images moving in the rate, the column rang after the start at up to 0.6 m/s for 40 ms
+// (the other particles' images, at rest in the rate, hid the compression they bring); with every image
+// moving and alpha as above, at most 0.14 m/s, 0.08 after the first 20 ms. Before that: with every ghost at
+// rest a particle in a corner of the floor, whose seven images move when it does, rattled along the diagonal
+// at up to 0.67 m/s (hydrostatic_tank.json, 2026-11-30); every ghost moving in the rate with alpha counting
+// only i's own blew the dam break with mirror walls up at 0.29 s, as its front reached the far wall's floor
+// edge (with the terms above it runs); ghosts that pushed with kappa_i alone gave the wall no pressure
+// gradient, so the column's edges, with a quarter of their neighbours real, were squeezed up at 1 m/s.
 
 // Several fluids (SimConstants::number_density, [SP08]; density.h and forces.h for WCSPH): every neighbour
 // counts with particle i's mass m_i in the density, its rate and alpha, and the pressure acceleration takes
@@ -86,7 +89,8 @@ SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, c
 }
 
 // Seed eq. 9 ([BK15] alpha factor): alpha_i = rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2),
-// rho_i = p.density[i] (dfsph_density); wall ghosts in the first sum only, i's own images twice (see above). Depends on positions
+// rho_i = p.density[i] (dfsph_density); wall ghosts in the first sum (i's own images twice) and, for a neighbour's
+// images, their motion with it in the second (see above). Depends on positions
 // only: computed once per step after the grid and shared by both solvers. Returns 0 where the denominator is below kDfsphAlphaEps
 // (isolated particle). [m^5/kg]
 SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t i) {
@@ -102,10 +106,20 @@ SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, con
   });
   const Vec3 xi = xyz(p.pos_mass[i]);
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
-  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
+  for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t image, Vec3 xg, float r2) {
     // i's own images twice (above): they move with i and push with kappa_i twice.
     const float weight = j == i ? 2.0f : 1.0f;
-    if (r2 > 0.0f) sum_grad += (weight * dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    if (!(r2 > 0.0f)) return;
+    const Vec3 gig = (dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    sum_grad += weight * gig;
+    if (j == i) return;
+    // j's image moves with j mirrored: the push kappa_i gives j moves it too.
+    const Vec3 xij = xi - xyz(p.pos_mass[j]);
+    const float rij2 = dot(xij, xij);
+    if (!(rij2 < k.h2) || !(rij2 > 0.0f)) return;
+    const Vec3 gij = (dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(rij2))) * xij;
+    const float cross = dot(mirror_velocity(walls, image, gij), gig);
+    sum_grad2 += c.number_density ? cross * (p.pos_mass[i].w / p.pos_mass[j].w) : cross;
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
@@ -137,8 +151,8 @@ SPH_HD inline int32_t dfsph_support(const SimConstants& c, const GridView& grid,
 }
 
 // Seed eq. 18: D rho_i / Dt = sum_j m_j (v_i - v_j) . grad W_ij, with the velocities vel (the solver's
-// predicted v*, not necessarily p.vel); wall ghosts are at rest but for i's own, which move with v_i
-// mirrored, so a particle approaching a wall compresses against its own image at twice its speed.
+// predicted v*, not necessarily p.vel); each wall ghost moves with its particle's velocity mirrored, so a
+// particle approaching a wall compresses against its own image at twice its speed.
 // Positive: compression. Exact zero for a rigid translation without walls; for a rigid rotation
 // each pair's term is zero (v_i - v_j is perpendicular to x_ij), so zero to round-off. [kg/(m^3 s)]
 SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& grid, const ParticleView& p,
@@ -155,7 +169,7 @@ SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& gr
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t image, Vec3 xg, float r2) {
     if (r2 > 0.0f)
       rate += dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2)) *
-              dot(j == i ? vi - mirror_velocity(walls, image, vi) : vi, xi - xg);
+              dot(vi - mirror_velocity(walls, image, vel[j]), xi - xg);
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
