@@ -164,15 +164,25 @@ TEST_CASE("two layers at density ratio 10 are thrown about when the neighbours' 
   CHECK(r.v_max > 0.5);  // five times the number-density form's bound
 }
 
-TEST_CASE("layers at density ratio 1000 hold for 0.05 s when the light fluid's stiffness matches", "[multiphase]") {
-  // Air-like over water: the light fluid's c0 raised so that Tait's B is a tenth of water's (the limit).
-  const sph::Scene scene = scene_file("two_layers.json", {"fluids.1.rest_density=1", "fluids.1.speed_of_sound=150"});
+namespace {
+
+// The issue's check for layers 1000 times apart: over 0.05 s the interface within a spacing and every
+// particle, start included, below 0.1 m/s.
+void check_ratio_1000(const sph::Scene& scene) {
   const LayerRun r = run_layers(scene, 0.05);
   INFO("water top " << r.start.lower_top << " -> " << r.end.lower_top << " m, light bottom " << r.start.upper_bottom
                     << " -> " << r.end.upper_bottom << " m; largest speed " << r.v_max << " m/s");
   CHECK(std::fabs(r.end.lower_top - r.start.lower_top) < r.spacing);
   CHECK(std::fabs(r.end.upper_bottom - r.start.upper_bottom) < r.spacing);
   CHECK(r.v_max < 0.1);
+}
+
+}  // namespace
+
+TEST_CASE("layers at density ratio 1000 hold for 0.05 s when the light fluid's stiffness matches", "[multiphase]") {
+  // Air-like over water: the light fluid's c0 raised so that Tait's B is a tenth of water's (the limit).
+  const sph::Scene scene = scene_file("two_layers.json", {"fluids.1.rest_density=1", "fluids.1.speed_of_sound=150"});
+  check_ratio_1000(scene);
 }
 
 TEST_CASE("under DFSPH layers at density ratio 1000 hold and stay below 0.1 m/s for 0.05 s", "[multiphase][dfsph][!shouldfail]") {
@@ -184,12 +194,7 @@ TEST_CASE("under DFSPH layers at density ratio 1000 hold and stay below 0.1 m/s 
   // until it has closed that (up to 18 ms at its top). Calibrated with the cubic spline the test passes, but
   // the interface drop in its closed box then holds up to 1.22 of Laplace's jump instead of 1.11 to 1.14.
   const sph::Scene scene = scene_file("two_layers.json", {"solver=dfsph", "fluids.1.rest_density=1"});
-  const LayerRun r = run_layers(scene, 0.05);
-  INFO("water top " << r.start.lower_top << " -> " << r.end.lower_top << " m, light bottom " << r.start.upper_bottom
-                    << " -> " << r.end.upper_bottom << " m; largest speed " << r.v_max << " m/s");
-  CHECK(std::fabs(r.end.lower_top - r.start.lower_top) < r.spacing);
-  CHECK(std::fabs(r.end.upper_bottom - r.start.upper_bottom) < r.spacing);
-  CHECK(r.v_max < 0.1);
+  check_ratio_1000(scene);
 }
 
 TEST_CASE("density ratios a formulation cannot hold are refused with the key and the limit", "[multiphase][scene]") {
