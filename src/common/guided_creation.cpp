@@ -277,9 +277,8 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
                                 metres(scene.emitters[i].radius) + " m at spacing " + metres(s.spacing) + " m)");
 
   // The kernel sum over the lattice depends on h / d only: computed at d = 1 it cannot overflow.
-  // With WCSPH's density kernel, so that its lattice start reads rho0. DFSPH keeps Poly6's (params.h,
-  // density_cubic_spline, says why).
-  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing, wcsph_cubic_spline(scene));
+  // With the run's density kernel (params.h, density_cubic_spline), so that its lattice start reads rho0.
+  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing, density_cubic_spline(scene));
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
   check_incompressible_step(scene, s.spacing);
   check_surface_tension(scene, s.h);

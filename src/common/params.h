@@ -253,11 +253,11 @@ struct SimConstants {
 };
 
 // Whether the run's summed density uses the cubic spline: DFSPH always ([BK15], dfsph.h), WCSPH where
-// sph.kernel = cubic_spline; else Poly6. The interface tension's colours take the same kernel. The mass and
-// the boundary particles' volumes do under WCSPH (lattice_density_factor), not under DFSPH, whose lattice
-// therefore starts 0.78% below rho0: calibrated with its own kernel, its resting column stayed 1 mm higher
-// and calmer, but a cube under the continuum surface force shed 91 of 1,728 particles as it rounded
-// (docs/results.md, "DFSPH's mass").
+// sph.kernel = cubic_spline; else Poly6. The interface tension's colours take the same kernel, and the mass and
+// the boundary particles' volumes are calibrated with it (lattice_density_factor), so that the start's lattice
+// reads rho0. (Until 2026-12-02 DFSPH's masses took Poly6's lattice sum: its lattice started 0.78% below rho0
+// and every resting DFSPH column first fell by that, at up to 0.15 m/s; docs/results.md, "DFSPH's mass from
+// the cubic spline".)
 SPH_HD inline bool density_cubic_spline(const SimConstants& c) { return c.solver == Solver::Dfsph || c.cubic_spline != 0; }
 
 }  // namespace sph
