@@ -86,7 +86,7 @@ TEST_CASE("boundary particles: a particle at a wall, in an edge and in a corner 
       const sph::Setup setup = sph::create_setup(scene, 1.0);
       const sph::ParticleState ps = initial_densities(scene, setup);
       const double d = setup.spacing, rho0 = 1000.0;
-      // The bulk's reading (the cubic spline's lattice sum differs from Poly6's, to which the mass is fitted).
+      // The bulk's reading (the mass and the walls' volumes are fitted to the run's density kernel).
       double bulk = 0.0;
       long bulk_n = 0;
       std::vector<double> worst(4, 0.0);
@@ -108,8 +108,8 @@ TEST_CASE("boundary particles: a particle at a wall, in an edge and in a corner 
     };
     const std::vector<double> particles = worst_by_walls("particles");
     const std::vector<double> penalty = worst_by_walls("penalty");
-    // DFSPH's cubic spline reads the lattice 0.8% low everywhere (the mass is fitted to Poly6's sum): the
-    // walls add nothing to that.
+    // The mass and the walls' volumes are fitted to each solver's density kernel (the cubic spline's under
+    // DFSPH, since 2026-12-02), so the bulk reads rho0; the tolerances are the walls'.
     const double tolerance_face = 0.01, tolerance_corner = 0.02;
     CHECK(particles[1] <= tolerance_face);
     CHECK(particles[2] <= tolerance_corner);

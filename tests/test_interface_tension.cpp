@@ -245,8 +245,8 @@ void check_dfsph_interface_jump(double box_x) {
 
 TEST_CASE("under DFSPH the continuum surface force's interface tension holds Laplace's pressure jump",
           "[surface_tension][interface][csf][dfsph]") {
-  // The box 0.8 mm longer than the fluid along x, room for 0.8% of its volume: what the settled, disordered
-  // fluid's cubic-spline sum exceeds the lattice's that sets the mass (the next test). Measured 2026-12-02:
+  // The box 0.8 mm longer than the fluid along x, room for 0.8% of its volume: about how far a settled,
+  // disordered fluid's cubic-spline density exceeds the start lattice's, which sets the mass (the next test). Measured 2026-12-02:
   // 1.12 and 1.11 times 2 sigma_ab / R at 0.25 and 0.5 s, the outer fluid at 63 to 67 Pa; the interface
   // force on each half of the ball 1.02 to 1.04 times 2 pi sigma_ab R, the pull Laplace's jump balances. With
   // sigma_ab / 2 on each side's own colour the jump was 0.58 and falling, the inner fluid spreading into the
@@ -254,7 +254,7 @@ TEST_CASE("under DFSPH the continuum surface force's interface tension holds Lap
   check_dfsph_interface_jump(0.1008);
 }
 
-TEST_CASE("under DFSPH the interface jump in a box filled to its walls follows the box's pressure",
+TEST_CASE("under DFSPH the interface drop in a box filled to its walls holds Laplace's pressure jump",
           "[surface_tension][interface][csf][dfsph][!shouldfail]") {
   // A known failure (docs/results.md, "DFSPH's mass from the cubic spline"). The mass is rho0 d^3 over the
   // cubic spline's sum on the start's lattice; as the fluid settles into a disordered packing the same number

@@ -188,8 +188,8 @@ TEST_CASE("layers at density ratio 1000 hold for 0.05 s when the light fluid's s
 TEST_CASE("under DFSPH layers at density ratio 1000 hold and stay below 0.1 m/s for 0.05 s", "[multiphase][dfsph]") {
   // DFSPH has no equation of state, so no stiffness to match: the air-like fluid as it is. The fastest
   // particle over the whole run, start included (v_max, as the issue asks within 0.05 s): 0.031 m/s (measured
-  // 2026-12-02). Its masses were calibrated with Poly6's lattice sum while it sums the cubic spline until
-  // then: both layers started 0.78% below rest density, the column fell freely until it had closed that (up
+  // 2026-12-02). Until then its masses were calibrated with Poly6's lattice sum while it sums the cubic
+  // spline: both layers started 0.78% below rest density, the column fell freely until it had closed that (up
   // to 18 ms at its top), and the fastest particle reached 0.152 m/s (docs/results.md, "DFSPH's mass from
   // the cubic spline").
   const sph::Scene scene = scene_file("two_layers.json", {"solver=dfsph", "fluids.1.rest_density=1"});

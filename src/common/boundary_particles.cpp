@@ -370,7 +370,7 @@ BoundaryParticles sample_boundary_particles(const SimConstants& c, const std::ve
     if (all.pos_volume[std::size_t(i)].w == 0.0f) continue;
     double sum = 0.0;
     for_each_boundary(view, xyz(all.pos_volume[std::size_t(i)]), c.kernel.h2,
-                      [&](int32_t, Vec3, float r2, float) { sum += double(density_kernel(c.kernel, c.cubic_spline != 0, r2)); });
+                      [&](int32_t, Vec3, float r2, float) { sum += double(density_kernel(c.kernel, density_cubic_spline(c), r2)); });
     kept.pos_volume.push_back(with_w(xyz(all.pos_volume[std::size_t(i)]), float(1.0 / sum)));
     kept.friction.push_back(all.friction[std::size_t(i)]);
     kept.normal_depth.push_back(all.normal_depth[std::size_t(i)]);

@@ -40,7 +40,8 @@ struct BoundaryParticles {
 // project's kernels (Poly6 density, h = 1.97 d) one layer at the wall reads a fluid particle at d / 2 from it
 // 58% too dense (one layer d / 2 behind the wall: 11%), measured on a lattice. So here the solid is sampled
 // on the fluid's lattice continued through the wall, in every layer a fluid particle inside can reach (within
-// h of the wall: 2 layers at the default resolution), and V_b is [AIA12]'s sum taken over the lattice on both
+// h of the wall: 2 layers at the default resolution), and V_b is [AIA12]'s sum, with the run's density kernel
+// (params.h, density_cubic_spline), taken over the lattice on both
 // sides within reach (boundary particles and virtual points on the fluid's side, which are then dropped, as
 // are virtual points inside another shape's solid). A particle at a wall, in an edge or in a corner then
 // finds behind it what it would find in the bulk: on a lattice V_b is the fluid's m / rho0 and the particle
