@@ -276,9 +276,12 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
                             emitter_label(scene.emitters, i) + ": its section lattice (radius " +
                                 metres(scene.emitters[i].radius) + " m at spacing " + metres(s.spacing) + " m)");
 
+  SimConstants& c = s.constants;
+  c.solver = scene.solver;
+  c.cubic_spline = wcsph_cubic_spline(scene) ? 1 : 0;
   // The kernel sum over the lattice depends on h / d only: computed at d = 1 it cannot overflow.
   // With the run's density kernel (params.h, density_cubic_spline), so that its lattice start reads rho0.
-  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing, density_cubic_spline(scene));
+  s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing, density_cubic_spline(c));
   check_float_range(scene, s.spacing, s.h, s.lattice_density);
   check_incompressible_step(scene, s.spacing);
   check_surface_tension(scene, s.h);
@@ -288,19 +291,16 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   report_ignored_settings(scene, s.report);
   s.meshes = load_meshes(scene);
 
-  SimConstants& c = s.constants;
   c.kernel = make_kernel_coeffs(s.h);
   c.density = scene.density;
   c.eos = scene.eos;
   c.pressure_form = scene.pressure_form;
-  c.cubic_spline = wcsph_cubic_spline(scene) ? 1 : 0;
   c.csf_curvature_spread = scene.csf_curvature_limit ? kCsfCurvatureSpread : -1.0f;
   c.viscosity = scene.viscosity;
   c.integrator = scene.integrator;
   c.clamp_negative_pressure = scene.clamp_negative_pressure;
   c.mirror_walls = scene.mirror_walls;
   c.mirror_wall_distance = float(0.5 * s.spacing);
-  c.solver = scene.solver;
   c.dfsph = scene.dfsph;
   c.pbf = scene.pbf;
   c.gravity = f3(scene.gravity);

@@ -44,19 +44,12 @@ struct Setup {
 double smoothing_length(double spacing, double neighbours);
 
 // sum over the cubic lattice of spacing d of W(|x|, h), times d^3 (1 for a perfect quadrature), W Poly6 or
-// the cubic spline: the density kernel of the run (density_cubic_spline). At h = 1.97 d: 1.0069 and 0.9991.
+// the cubic spline: the density kernel of the run (params.h, density_cubic_spline). At h = 1.97 d: 1.0069 and 0.9991.
 double lattice_density_factor(double spacing, double h, bool cubic_spline);
 
 // Whether the scene's WCSPH sums use the cubic spline (sph.kernel = cubic_spline; SimConstants::cubic_spline).
 inline bool wcsph_cubic_spline(const Scene& scene) {
   return scene.solver == Solver::Wcsph && scene.kernel == KernelPair::CubicSpline;
-}
-
-// Whether the run's summed density uses the cubic spline, from the scene (params.h has the same for the
-// constants): DFSPH always, WCSPH with sph.kernel = cubic_spline; else Poly6. The masses and the boundary
-// particles' volumes are calibrated with it (lattice_density_factor).
-inline bool density_cubic_spline(const Scene& scene) {
-  return scene.solver == Solver::Dfsph || wcsph_cubic_spline(scene);
 }
 
 // Surface tension sigma [N/m] as cohesion between particles of one fluid (forces.h), with the cohesion kernel
