@@ -33,6 +33,7 @@ void check_dfsph_equal(const sph::DfsphConstants& a, const sph::DfsphConstants& 
   CHECK(a.check_every == b.check_every);
   CHECK(a.divergence_solver == b.divergence_solver);
   CHECK(a.warm_start == b.warm_start);
+  CHECK(a.warm_start_fraction == b.warm_start_fraction);
   CHECK(a.chebyshev == b.chebyshev);
 }
 
@@ -96,7 +97,7 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
   SECTION("dfsph") {
     const sph::Scene s = parse_solver("dfsph", R"("dfsph": { "density_tolerance": 0.002, "divergence_tolerance": 0.05,
         "min_iterations": 3, "max_iterations": 40, "check_every": 5, "divergence_solver": false, "warm_start": false,
-        "chebyshev": 0 })");
+        "warm_start_fraction": 0.5, "chebyshev": 0 })");
     const sph::DfsphConstants& d = s.dfsph;
     CHECK(d.density_tolerance == Approx(0.002f));
     CHECK(d.divergence_tolerance == Approx(0.05f));
@@ -105,11 +106,13 @@ TEST_CASE("loader: scene solver blocks read every key", "[loader][solver]") {
     CHECK(d.check_every == 5);
     CHECK(d.divergence_solver == 0);
     CHECK(d.warm_start == 0);
+    CHECK(d.warm_start_fraction == 0.5f);
     CHECK(d.chebyshev == 0.0f);  // plain Jacobi
     // The upper ends of the ranges are allowed, and min_iterations may equal max_iterations.
     const sph::Scene e = parse_solver("dfsph", R"("dfsph": { "density_tolerance": 0.1, "divergence_tolerance": 1,
-        "min_iterations": 10000, "max_iterations": 10000, "check_every": 100 })");
+        "min_iterations": 10000, "max_iterations": 10000, "check_every": 100, "warm_start_fraction": 1 })");
     CHECK(e.dfsph.density_tolerance == Approx(0.1f));
+    CHECK(e.dfsph.warm_start_fraction == 1.0f);
     CHECK(e.dfsph.min_iterations == 10000);
     CHECK(e.dfsph.check_every == 100);
   }
@@ -167,6 +170,7 @@ TEST_CASE("loader: scene solver values out of range are refused with the key pat
         {"max_iterations", "2.5", "expected a whole number"}, {"density_tolerance", "\"small\"", "expected a number"},
         {"divergence_solver", "1", "expected true or false"}, {"warm_start", "\"yes\"", "expected true or false"},
         {"chebyshev", "1", "allowed [0, 0.99]"},            {"chebyshev", "-0.1", "allowed [0, 0.99]"},
+        {"warm_start_fraction", "0", "allowed (0, 1]"},     {"warm_start_fraction", "1.5", "allowed (0, 1]"},
     };
     for (const BadValue& b : bad) {
       INFO("dfsph." << b.key << " = " << b.value);
@@ -233,7 +237,7 @@ TEST_CASE("loader: scene solver names and blocks are checked", "[loader][solver]
                         Contains("test.json") && Contains("dfsph.max_iteration") && Contains("unknown key") &&
                             Contains("density_tolerance") && Contains("divergence_tolerance") && Contains("min_iterations") &&
                             Contains("max_iterations") && Contains("check_every") && Contains("divergence_solver") &&
-                            Contains("warm_start") && Contains("chebyshev"));
+                            Contains("warm_start") && Contains("warm_start_fraction") && Contains("chebyshev"));
     REQUIRE_THROWS_WITH(parse_solver("pbf", R"("pbf": { "epsilon": 0.1 })"),
                         Contains("test.json") && Contains("pbf.epsilon") && Contains("unknown key") &&
                             Contains("iterations") && Contains("relaxation") && Contains("scorr_k") && Contains("scorr_n") &&

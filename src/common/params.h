@@ -49,6 +49,17 @@ struct DfsphConstants {
   int32_t check_every;
   int32_t divergence_solver;   // 1: run it (0 for the comparisons of [BK15] section 5)
   int32_t warm_start;          // 1: start from the last step's pressures ([BK15] section 4.3)
+  // The share of the last step's pressures a warm start carries, in (0, 1]; 1 (the paper's) by default. Below 1
+  // the carried pressure is a leaky memory. With all of it a resting column rings: the density solve stops at
+  // a mean residual of 1e-4, and a bulk compression of that size left by one step is corrected by the next with
+  // a pressure of order rho0 H^2 e / dt^2, as large as the hydrostatic one for H = 0.1 m at 1 ms steps, which
+  // the warm start carries on. Measured (2026-12-02, hydrostatic_tank.json, docs/results.md, "DFSPH's warm
+  // start"): at 1 ms steps the floor's pressure swung between 0.4 and 1.7 times hydrostatic over about six
+  // steps (rms speed 4 to 9 mm/s) with 1 and 0.9, and held within 2% with 0.75 (0.04 mm/s, 17 iterations a
+  // step against 27) or 0.5; at 2.6 ms steps 0.75 calmed the median of the fastest particle (0.010 against
+  // 0.021 m/s) but took 67 iterations against 24 and let single particles reach 0.08 m/s (1: 0.028), so it
+  // is not the default. SPlisHSPlasH carries half.
+  float warm_start_fraction;
   // Chebyshev semi-iterative acceleration of both solves' Jacobi iteration ([Wan15]: H. Wang 2015, "A
   // Chebyshev semi-iterative approach for accelerating projective and position-based dynamics", ACM TOG
   // 34(6)): the estimate rho of the iteration's spectral radius, in [0, 0.99]; 0: plain Jacobi. 0.9 measured
@@ -98,7 +109,7 @@ struct PbfConstants {
 
 // [BK15]'s defaults: eta = 0.01% and eta_v = 0.1% (section 5), at least 2 density iterations (SPlisHSPlasH's
 // minimum: one iteration cannot both apply and re-measure the warm start), at most 100.
-constexpr DfsphConstants dfsph_defaults() { return DfsphConstants{1e-4f, 1e-3f, 2, 100, 1, 1, 1, 0.9f}; }
+constexpr DfsphConstants dfsph_defaults() { return DfsphConstants{1e-4f, 1e-3f, 2, 100, 1, 1, 1, 1.0f, 0.9f}; }
 
 // The paper's defaults ([MM13] sections 3 to 5) with the one-sided constraint, 4 iterations without a
 // tolerance (the dam-break target of issue 12), and s_corr off: the paper's k = 0.1 belongs to its two-sided

@@ -47,7 +47,7 @@ void read_solver(ObjectReader& r, Scene& s) {
   if (r.has("dfsph")) {
     ObjectReader dr(r.raw("dfsph"), source, "dfsph");
     dr.allow({"density_tolerance", "divergence_tolerance", "min_iterations", "max_iterations", "check_every",
-              "divergence_solver", "warm_start", "chebyshev"});
+              "divergence_solver", "warm_start", "warm_start_fraction", "chebyshev"});
     DfsphConstants& d = s.dfsph;
     d.density_tolerance = float(dr.number("density_tolerance", d.density_tolerance, 0.0, 0.1, true));
     d.divergence_tolerance = float(dr.number("divergence_tolerance", d.divergence_tolerance, 0.0, 1.0, true));
@@ -61,6 +61,7 @@ void read_solver(ObjectReader& r, Scene& s) {
     d.check_every = int32_t(dr.integer("check_every", d.check_every, 1, 100));
     d.divergence_solver = dr.boolean("divergence_solver", d.divergence_solver != 0) ? 1 : 0;
     d.warm_start = dr.boolean("warm_start", d.warm_start != 0) ? 1 : 0;
+    d.warm_start_fraction = float(dr.number("warm_start_fraction", d.warm_start_fraction, 0.0, 1.0, true));
     // Below 1: at rho = 1 the weights 4 / (4 - rho^2 omega) grow without bound.
     d.chebyshev = float(dr.number("chebyshev", d.chebyshev, 0.0, 0.99));
     dr.finish();

@@ -22,7 +22,8 @@
 // so a particle with more pressure than it needs (after a warm start from a faster step, at a free surface)
 // loses it, and none ever pulls. They warm-start from the last step's pressures ([BK15] section 4.3), kept
 // per particle in the fields pressure (rho kappa, [Pa]) and near_pressure (rho kappa_v dt, [Pa s]), which
-// survive the grid's reorder and do not depend on dt. The iteration is accelerated by Chebyshev's
+// survive the grid's reorder and do not depend on dt; a warm start carries all of them or a share
+// (warm_start_fraction). The iteration is accelerated by Chebyshev's
 // semi-iterative method ([Wan15], dfsph.chebyshev; solve() below): on the 16k dam break and a resting column
 // it needs half the iterations or fewer (docs/results.md). Convergence: the mean residual, one deterministic
 // reduction (reduction.h) per check, every check_every iterations after the minimum, the same on every back
@@ -76,7 +77,8 @@ struct DensityAlphaFn {
   }
 };
 
-// The warm start ([BK15] section 4.3): the pressure the last step's solve ended with, kappa = P / rho (density
+// The warm start ([BK15] section 4.3): the share `fraction` (DfsphConstants::warm_start_fraction, which says
+// why not all) of the pressure the last step's solve ended with, kept scaled so, and kappa = P / rho (density
 // solver, scale = 1) or kappa_v = P_v / (rho dt) (divergence solver, scale = 1 / dt). With warm_start off,
 // kappa = 0. Inlet particles get none.
 // The divergence solve (divergence true) gives a particle without support (p.support == 0) no pressure, and so
@@ -88,9 +90,11 @@ struct WarmStartFn {
   float* kept;  // p.pressure or p.near_pressure
   float scale;
   int32_t warm;
+  float fraction;
   bool divergence;
   SPH_HD void operator()(int32_t i) const {
     if (!warm || p.age[i] < 0.0f || (divergence && p.support[i] == 0)) kept[i] = 0.0f;
+    kept[i] *= fraction;
     p.kappa[i] = kept[i] * scale / p.density[i];
   }
 };
@@ -212,7 +216,7 @@ int32_t solve(Exec& x, float dt, double& error, bool& capped) {
   const float tolerance = kDensity ? s.density_tolerance : s.divergence_tolerance;
   const int32_t min_iterations = kDensity ? s.min_iterations : 1;
   const int32_t n = p.n;
-  x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start, !kDensity});
+  x.for_each(WarmStartFn{p, kept, kDensity ? 1.0f : 1.0f / dt, s.warm_start, s.warm_start_fraction, !kDensity});
   if (s.warm_start) x.for_each(ApplyFn<C>{x.constants(), x.grid(), p, dt, kept, 0.0f});  // kept as it is
   // [Wan15]'s weights (chebyshev.h). With the projection at 0 the iteration is not linear, so a check whose
   // mean residual grew restarts the weights at 1 (this iteration's corrections recomputed as plain Jacobi):
