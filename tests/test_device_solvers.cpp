@@ -59,9 +59,11 @@ TEST_CASE("device solvers: DFSPH with mirror walls and Morris viscosity, no warm
   check_solver_case(scene, 40);
 }
 
-TEST_CASE("device solvers: DFSPH at 2.6 ms steps, its artificial viscosity sub-cycled", "[device][solvers]") {
+TEST_CASE("device solvers: DFSPH at 2.6 ms steps, its artificial viscosity sub-cycled, a warm start's share of 0.75",
+          "[device][solvers]") {
   const sph::Scene scene = scene_file("hydrostatic_tank.json", {"resolution.particles_across=8", "solver=dfsph",
-                                                                "time_step.mode=fixed", "time_step.dt=0.0026"});
+                                                                "time_step.mode=fixed", "time_step.dt=0.0026",
+                                                                "dfsph.warm_start_fraction=0.75"});
   REQUIRE(sph::viscous_substeps(double(sph::create_setup(scene, 1.0).constants.substep_rate), 0.0026) > 1);
   check_solver_case(scene, 30);
 }
