@@ -93,9 +93,9 @@ void print_setup(const RunDescription& o, const Scene& scene, Simulation& sim, c
                                                     (st.constants.cubic_spline ? ", sph.kernel: cubic_spline" : ", sph.kernel: poly6_spiky")
                                               : std::string());
   if (scene.solver == Solver::Dfsph) {
-    std::cout << ", chebyshev: " << scene.dfsph.chebyshev << ", warm start: ";
-    if (scene.dfsph.warm_start) std::cout << scene.dfsph.warm_start_fraction;  // the share carried
-    else std::cout << "off";
+    std::cout << ", chebyshev: " << scene.dfsph.chebyshev;
+    if (scene.dfsph.warm_start) std::cout << ", warm_start_fraction: " << scene.dfsph.warm_start_fraction;
+    else std::cout << ", warm start: off";
   }
   if (scene.solver == Solver::Pbf)
     std::cout << ", iterations: " << scene.pbf.iterations << ", jacobi_weight: " << scene.pbf.jacobi_weight

@@ -273,8 +273,8 @@ SPH_HD inline void dfsph_body_reaction(const SimConstants& c, const GridView& gr
 // The hydrostatic part of a wall's pressure in a DFSPH step ([Adami et al. 2012] eq. 27, as forces.h's
 // boundary pair): boundary or body particle b at x_i - xib carries P_b = P_i + rho0 g.(x_b - x_i), of which
 // dfsph_pressure_acceleration's mirrored stiffness is the P_i; this is the rest, -rho0 g.x_ib, kept so that
-// P_b >= 0 (a wall never pulls), with P_i the pressure the last density solve ended with (p.pressure, the
-// warm start). It does not depend on the stiffnesses, so it is a force of the step's forces phase. Returns the
+// P_b >= 0 (a wall never pulls), with P_i the pressure the last density solve ended with (p.pressure, of
+// which the warm start carries dfsph.warm_start_fraction; the clamp takes all of it). It does not depend on the stiffnesses, so it is a force of the step's forces phase. Returns the
 // acceleration of the fluid particle [m/s^2] from one such particle of volume V_b (0 < r2 < h^2).
 SPH_HD inline Vec3 dfsph_wall_hydrostatic_pair(const KernelCoeffs& k, Vec3 gravity, float rho0, float pressure_i,
                                                Vec3 xib, float r2, float volume) {

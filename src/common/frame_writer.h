@@ -12,7 +12,7 @@
 //   element vertex N
 //   properties, one record per particle: float x y z vx vy vz density pressure, uchar fluid, int id,
 //   float ax ay az age near_pressure   (near_pressure: WCSPH's near pressure, or DFSPH's divergence pressure
-//                                       that its next warm start reads, particle_view.h)
+//                                       times dt [Pa s], its next warm start's source, particle_view.h)
 //   end_header
 #pragma once
 

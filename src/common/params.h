@@ -54,9 +54,9 @@ struct DfsphConstants {
   // a mean residual of 1e-4, and a bulk compression of that size left by one step is corrected by the next with
   // a pressure of order rho0 H^2 e / dt^2, as large as the hydrostatic one for H = 0.1 m at 1 ms steps, which
   // the warm start carries on. Measured (2026-12-02, hydrostatic_tank.json, docs/results.md, "DFSPH's warm
-  // start"): at 1 ms steps the floor's pressure swung between 0.4 and 1.7 times hydrostatic over about six
-  // steps (rms speed 4 to 9 mm/s) with 1 and 0.9, and held within 2% with 0.75 (0.04 mm/s, 17 iterations a
-  // step against 27) or 0.5; at 2.6 ms steps 0.75 calmed the median of the fastest particle (0.010 against
+  // start"): at 1 ms steps, 10 across, the floor's pressure swung between 0.4 and 1.7 times hydrostatic over
+  // about six steps with 1 (rms speed 3.6 to 9 mm/s), as much with 0.9, and held within 3% with 0.75 (0.03 to
+  // 0.06 mm/s, 17 iterations a step against 27) or 0.5; at 2.6 ms steps 0.75 calmed the median of the fastest particle (0.010 against
   // 0.021 m/s) but took 67 iterations against 24 and let single particles reach 0.08 m/s (1: 0.028), so it
   // is not the default. SPlisHSPlasH carries half.
   float warm_start_fraction;

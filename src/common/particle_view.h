@@ -21,9 +21,9 @@ struct ParticleView {
   float* density;
   float* near_density;
   float* pressure;       // WCSPH: the equation of state's; DFSPH: rho kappa summed over the density solve [Pa],
-                         // the next step's warm start ([BK15] section 4.3); PBF: 0
+                         // of which the next step's warm start carries dfsph.warm_start_fraction ([BK15] 4.3); PBF: 0
   float* near_pressure;  // WCSPH: near pressure; DFSPH: rho kappa_v dt summed over the divergence solve [Pa s],
-                         // its warm start
+                         // its warm start's source (as pressure)
   float* age;           // time since birth; < 0 while a jet particle is still in its inlet (kinematic)
   uint8_t* fluid;       // index into SimConstants::fluids
   int32_t* id;          // stable particle identity, survives reordering
