@@ -157,6 +157,19 @@ TEST_CASE("device solvers: DFSPH with two fluids of density ratio 10 in the numb
   check_solver_case(scene, 30);
 }
 
+TEST_CASE("device solvers: DFSPH with Poly6 and Spiky (sph.kernel given), mirror walls and boundary particles",
+          "[device][solvers][multiphase]") {
+  // The kernel choice of src/common/dfsph.h (dfsph_w, dfsph_grad_fac) in every DFSPH sum: two fluids between
+  // mirror walls, then one fluid on boundary particles (their density, alpha, rate and hydrostatic part).
+  const sph::Scene layers = scene_file("two_layers.json", {"resolution.particles_across=5", "solver=dfsph", "sph.kernel=poly6_spiky"});
+  const sph::Scene tank = scene_file("hydrostatic_tank.json", {"resolution.particles_across=8", "solver=dfsph",
+                                                               "sph.kernel=poly6_spiky", "sph.walls=particles"});
+  for (const sph::Scene* scene : {&layers, &tank}) {
+    INFO(scene->name);
+    check_solver_case(*scene, 30);
+  }
+}
+
 TEST_CASE("device solvers: PBF with two fluids of density ratio 10 in the number-density form", "[device][solvers][multiphase]") {
   // Mirror walls, the light fluid's corrections weighted by inverse mass (src/common/pbf.h); then with the
   // fluids' artificial viscosity (src/solvers/pbf.h, apply_viscosity: sub-cycled, 2 updates a step here).

@@ -1,6 +1,6 @@
 // Interface tension between two fluids (issue 15, "interface tension between fluids as an option"), the scene
 // key interface_tension. Under the cohesion model it sets sigma_ab by a cohesion between the two fluids'
-// particles, calibrated in the same mean-field picture as a fluid's own (src/common/guided_creation.h,
+// particles, calibrated in the same mean-field picture as a fluid's own (src/common/calibration.h,
 // cross_cohesion). Tested: the calibration's limits, the key's validation, the energy budget, and that a cube
 // of one fluid inside another pulls into a ball of its volume with an interface tension and stays a cube
 // without one; the pressure jump across that interface drifts (docs/results.md), and is not claimed. Under

@@ -236,25 +236,25 @@ double rt_amplitude(const sph::ParticleState& ps, double width) {
 // by 0.1%), read where a is 2.5 a0 (k a = 0.2, still linear).
 struct RayleighTaylor {
   double a0 = 0.0, a_end = 0.0, t_read = 0.0, t_end = 0.0;
-  double rate = 0.0;  // measured n [1/s]; 0 where a never reached 2.5 a0 within 0.3 s
+  double rate = 0.0;  // measured n [1/s]; 0 where a never reached 2.5 a0 within t_max
   bool blew_up = false;
   double theory = 0.0;  // sqrt(A g k) [1/s]
 };
 
-RayleighTaylor rayleigh_taylor(std::vector<std::string> sets) {
+RayleighTaylor rayleigh_taylor(std::vector<std::string> sets, double t_max = 0.3) {
   const double width = 0.1;
   for (const char* s : {"boundaries.0.max=[0.1,0.2,0.01]", "emitters.0.max=[0.075,0.1,0.01]", "emitters.1.max=[0.1,0.2,0.01]",
                         "emitters.2.max=[0.1,0.1,0.01]"})
     sets.push_back(s);
   const sph::Scene scene = scene_file("rayleigh_taylor.json", sets);
   REQUIRE(scene.fluids[1].rest_density == 500.0);
-  sph::Simulation sim(scene, cpu_factory(), 0.3);
+  sph::Simulation sim(scene, cpu_factory(), t_max);
   RayleighTaylor r;
   r.a0 = rt_amplitude(sim.particles(), width);
   const double atwood = (1000.0 - 500.0) / 1500.0, k = 3.14159265358979 / width, g = 9.81;
   r.theory = std::sqrt(atwood * g * k);
   try {
-    while (sim.time() < 0.3 && r.rate == 0.0) {
+    while (sim.time() < t_max && r.rate == 0.0) {
       sim.advance();
       r.a_end = rt_amplitude(sim.particles(), width);
       if (r.a_end >= 2.5 * r.a0) {
@@ -298,4 +298,58 @@ TEST_CASE("Rayleigh-Taylor under PBF: the interface grows at the rate of linear 
                                     << r.a_end << " m from " << r.a0 << " m); theory " << r.theory << " 1/s");
   CHECK_FALSE(r.blew_up);
   CHECK(std::fabs(r.rate - r.theory) > 0.2 * r.theory);
+}
+
+TEST_CASE("Rayleigh-Taylor under DFSPH: the interface grows at the rate of linear theory with Poly6 and Spiky",
+          "[multiphase][dfsph]") {
+  // The scene gives sph.kernel = "poly6_spiky", which DFSPH then takes (src/common/dfsph.h; measured -9%:
+  // 2.5 a0 at about 0.17 s, docs/results.md, "DFSPH's kernel").
+  check_rayleigh_taylor({"solver=dfsph"});
+}
+
+TEST_CASE("Rayleigh-Taylor under DFSPH with the cubic spline stalls below linear theory's rate", "[multiphase][dfsph]") {
+  // The method where it fails: with [BK15]'s one kernel the particles' lattice resists the slow shear and the
+  // interface stops near 1.6 a0 (measured), where theory passes 2.5 a0 at 0.155 s. A rate within 20% of
+  // theory would reach 2.5 a0 by 0.194 s, so not reaching it by 0.2 s is a miss of more than 20%.
+  const RayleighTaylor r = rayleigh_taylor({"solver=dfsph", "sph.kernel=cubic_spline"}, 0.2);
+  INFO("cubic spline: amplitude " << r.a_end / r.a0 << " a0 at " << r.t_end << " s (theory cosh(n t) = "
+                                  << std::cosh(r.theory * r.t_end) << ")");
+  CHECK_FALSE(r.blew_up);
+  CHECK(r.rate == 0.0);
+  CHECK(r.a_end > r.a0);  // it grows at first (1.6 a0), then stalls
+}
+
+TEST_CASE("DFSPH takes sph.kernel when the scene gives it, calibrates its masses with it and says when it stalls",
+          "[multiphase][dfsph][scene]") {
+  const auto setup = [](const std::string& file, const std::vector<std::string>& sets, bool& stall_noted) {
+    const sph::Setup s = sph::create_setup(scene_file(file, sets), 0.1);
+    stall_noted = std::any_of(s.report.begin(), s.report.end(), [](const std::string& line) {
+      return line.find("stalls") != std::string::npos && line.find("sph.kernel = \"poly6_spiky\"") != std::string::npos;
+    });
+    return s;
+  };
+  bool noted = false;
+  // rayleigh_taylor gives the pair: DFSPH's masses then follow Poly6's lattice sum (1.0069 at h = 1.97 d).
+  sph::Setup s = setup("rayleigh_taylor.json", {"solver=dfsph"}, noted);
+  CHECK(s.constants.dfsph_poly6_spiky == 1);
+  CHECK_FALSE(sph::density_cubic_spline(s.constants));
+  CHECK(s.lattice_density == Approx(1.0069).margin(5e-4));
+  CHECK_FALSE(noted);
+  // The cubic spline, asked or by default (two_layers gives no kernel), with the note where densities differ.
+  s = setup("rayleigh_taylor.json", {"solver=dfsph", "sph.kernel=cubic_spline"}, noted);
+  CHECK(s.constants.dfsph_poly6_spiky == 0);
+  CHECK(s.lattice_density == Approx(0.9991).margin(5e-4));
+  CHECK(noted);
+  s = setup("two_layers.json", {"solver=dfsph"}, noted);
+  CHECK(s.constants.dfsph_poly6_spiky == 0);
+  CHECK(sph::density_cubic_spline(s.constants));
+  CHECK(noted);
+  s = setup("two_layers.json", {"solver=dfsph", "fluids.1.rest_density=1000"}, noted);
+  CHECK_FALSE(noted);  // one rest density: nothing to stall
+  // WCSPH and PBF never set it.
+  s = setup("rayleigh_taylor.json", {}, noted);
+  CHECK(s.constants.dfsph_poly6_spiky == 0);
+  s = setup("rayleigh_taylor.json", {"solver=pbf"}, noted);
+  CHECK(s.constants.dfsph_poly6_spiky == 0);
+  CHECK_FALSE(noted);
 }

@@ -1,5 +1,5 @@
 // Surface tension in N/m (issue 15): cohesion between the particles of one fluid with Akinci et al.'s
-// kernel, calibrated from sigma by the mean-field surface energy (src/common/guided_creation.h). A 0.1 m cube
+// kernel, calibrated from sigma by the mean-field surface energy (src/common/calibration.h). A 0.1 m cube
 // of water without gravity (scenes/drop_oscillation.json) pulls itself into a sphere of its own volume at two
 // resolutions without gaining more kinetic energy than the surface energy it releases; the set-up counts
 // that energy into the run's budget and refuses a fluid too soft for its sigma. What the model does not

@@ -93,7 +93,8 @@ void print_setup(const RunDescription& o, const Scene& scene, Simulation& sim, c
                                                     (st.constants.cubic_spline ? ", sph.kernel: cubic_spline" : ", sph.kernel: poly6_spiky")
                                               : std::string());
   if (scene.solver == Solver::Dfsph) {
-    std::cout << ", chebyshev: " << scene.dfsph.chebyshev;
+    std::cout << (st.constants.dfsph_poly6_spiky ? ", sph.kernel: poly6_spiky" : ", sph.kernel: cubic_spline")
+              << ", chebyshev: " << scene.dfsph.chebyshev;
     if (scene.dfsph.warm_start) std::cout << ", warm_start_fraction: " << scene.dfsph.warm_start_fraction;
     else std::cout << ", warm start: off";
   }

@@ -1,7 +1,7 @@
 // The energy surface tension can release, for the energy budget (simulation.h): the cohesion (forces.h,
 // cohesion_pair) is the pair potential u(r) = -gamma m_a m_b int_r^h C(s) ds between particles of one fluid,
 // and a particle at a surface misses part of the bulk's (negative) share of it. Summed, that excess is the
-// surface energy sigma A of the calibration (guided_creation.h); cohesion can turn at most this into motion
+// surface energy sigma A of the calibration (calibration.h); cohesion can turn at most this into motion
 // (a cube pulling into a sphere releases sigma times the area it loses), so a drop that gains more is
 // flagged as unstable like any other energy gain.
 #pragma once
@@ -22,7 +22,7 @@ double akinci_cohesion_potential_shape(double q);
 double akinci_adhesion_potential_shape(double q);
 
 // The adhesion constant k_a [m/(kg s^2)] of a fluid with cohesion constant `cohesion` (its fluids.N.cohesion,
-// calibrated to sigma: guided_creation.h) that meets boundary particles at the contact angle theta [degrees],
+// calibrated to sigma: calibration.h) that meets boundary particles at the contact angle theta [degrees],
 // on the lattice of spacing d [m] with support h [m] that set-up lays the fluid and the walls on. The adhesion
 // pair force -k_a m_a Psi_b a(r / h) x_ab / r ([AKT13] eq. 6 with their kernel A, eq. 7; Psi_b = rho0 V_b, the
 // fluid's mass on the lattice) is the pair potential -k_a m^2 h int_{r/h}^1 a, as the cohesion's is

@@ -3,8 +3,17 @@
 // particles (src/solvers/dfsph.h); they read the particle and grid views, and the arrays of velocities and
 // stiffnesses they are given. Each returns its value: the phase stores it.
 //
-// Kernel: the cubic spline (kernels.h, support h) for W and grad W alike, as [BK15] (seed 3.4: the density
-// and its rate must use one kernel for the predictions and corrections to agree). Neighbours: every particle
+// Kernel: the cubic spline (kernels.h, support h) for W and grad W alike by default, as [BK15] (seed 3.4: the
+// density and its rate must use one kernel for the predictions and corrections to agree); or, where the scene
+// asks for it (sph.kernel = "poly6_spiky", SimConstants::dfsph_poly6_spiky), Poly6 for W with Spiky's grad W,
+// WCSPH's pair [Mueller 2003]. Why the option: a particle lattice held by one kernel resists a small shear as
+// a crystal does (to shear it, particles must pass through compressed places), so a weak flow stalls as if the
+// fluid had a yield stress; the pair, whose density and gradient disagree a little, melts it. Measured
+// (2026-12-03, the rayleigh_taylor slab, 0.01 m deep; docs/results.md, "DFSPH's kernel"): the interface over
+// its start at 0.2 s 1.63 with the cubic spline, 3.10 with the pair, linear theory 3.86 (WCSPH 3.08). The
+// pair's cost: a resting column rings more (rms 4.4 against 0.04 mm/s with warm_start_fraction 0.75) and the
+// prediction and the next step's density disagree by the kernels' difference, so it is not the default.
+// Neighbours: every particle
 // within h (for_each_neighbour, the particle itself included); the particle itself, and any particle at the
 // same position, adds W but no gradient (there is no direction). Positions and masses come from the grid
 // phase's packed records (pos_mass).
@@ -61,6 +70,14 @@ constexpr float kDfsphRelaxation = 0.5f;
 // not a divergence, and correcting it flung surface particles up at steps of 4 ms (measured).
 constexpr float kDfsphMinSupport = 0.6f;
 
+// W_ij [1/m^3] and grad W_ij / r_ij [1/m^5] (grad W_ij = fac * x_ij; r > 0) of DFSPH's kernel (above).
+SPH_HD_ALWAYS_INLINE float dfsph_w(const SimConstants& c, float r) {
+  return c.dfsph_poly6_spiky ? poly6(c.kernel, r * r) : cubic_spline(c.kernel, r);
+}
+SPH_HD_ALWAYS_INLINE float dfsph_grad_fac(const SimConstants& c, float r) {
+  return c.dfsph_poly6_spiky ? spiky_grad_fac(c.kernel, r) : cubic_spline_grad_fac(c.kernel, r);
+}
+
 // Neighbour j's mass in particle i's sums: m_j, or m_i in the number-density form (above).
 SPH_HD_ALWAYS_INLINE float dfsph_mass(const SimConstants& c, const ParticleView& p, int32_t i, int32_t j) {
   return c.number_density ? p.pos_mass[i].w : p.pos_mass[j].w;
@@ -72,18 +89,18 @@ SPH_HD inline float dfsph_density(const SimConstants& c, const GridView& grid, c
   const KernelCoeffs& k = c.kernel;
   float rho = 0.0f;
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3, float r2) {
-    rho += dfsph_mass(c, p, i, j) * cubic_spline(k, sqrtf(r2));
+    rho += dfsph_mass(c, p, i, j) * dfsph_w(c, sqrtf(r2));
   });
   const NearWalls walls = c.mirror_walls ? near_walls(c, xyz(p.pos_mass[i])) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3, float r2) {
-    rho += dfsph_mass(c, p, i, j) * cubic_spline(k, sqrtf(r2));
+    rho += dfsph_mass(c, p, i, j) * dfsph_w(c, sqrtf(r2));
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xyz(p.pos_mass[i]), k.h2, [&](int32_t, Vec3, float r2, float volume) {
-    rho += rho0 * volume * cubic_spline(k, sqrtf(r2));
+    rho += rho0 * volume * dfsph_w(c, sqrtf(r2));
   });
   for_each_body_particle(grid.bodies, grid.num_bodies, xyz(p.pos_mass[i]), k.h2, [&](int32_t, int32_t, Vec3, float r2, float volume, Vec3) {
-    rho += rho0 * volume * cubic_spline(k, sqrtf(r2));
+    rho += rho0 * volume * dfsph_w(c, sqrtf(r2));
   });
   return rho;
 }
@@ -99,7 +116,7 @@ SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, con
   float sum_grad2 = 0.0f;           // sum_j |m_j grad W_ij|^2 [kg^2/m^8]
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    const Vec3 g = (dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
+    const Vec3 g = (dfsph_mass(c, p, i, j) * dfsph_grad_fac(c, sqrtf(r2))) * xij;
     sum_grad += g;
     // Number density: (m_i^3 / m_j) |grad W|^2 = |m_i grad W|^2 m_i / m_j (above).
     sum_grad2 += c.number_density ? length2(g) * (p.pos_mass[i].w / p.pos_mass[j].w) : length2(g);
@@ -110,23 +127,23 @@ SPH_HD inline float dfsph_alpha(const SimConstants& c, const GridView& grid, con
     // i's own images twice (above): they move with i and push with kappa_i twice.
     const float weight = j == i ? 2.0f : 1.0f;
     if (!(r2 > 0.0f)) return;
-    const Vec3 gig = (dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    const Vec3 gig = (dfsph_mass(c, p, i, j) * dfsph_grad_fac(c, sqrtf(r2))) * (xi - xg);
     sum_grad += weight * gig;
     if (j == i) return;
     // j's image moves with j mirrored: the push kappa_i gives j moves it too.
     const Vec3 xij = xi - xyz(p.pos_mass[j]);
     const float rij2 = dot(xij, xij);
     if (!(rij2 < k.h2) || !(rij2 > 0.0f)) return;
-    const Vec3 gij = (dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(rij2))) * xij;
+    const Vec3 gij = (dfsph_mass(c, p, i, j) * dfsph_grad_fac(c, sqrtf(rij2))) * xij;
     const float cross = dot(mirror_velocity(walls, image, gij), gig);
     sum_grad2 += c.number_density ? cross * (p.pos_mass[i].w / p.pos_mass[j].w) : cross;
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
-    if (r2 > 0.0f) sum_grad += (rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    if (r2 > 0.0f) sum_grad += (rho0 * volume * dfsph_grad_fac(c, sqrtf(r2))) * xib;
   });
   for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
-    if (r2 > 0.0f) sum_grad += (rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    if (r2 > 0.0f) sum_grad += (rho0 * volume * dfsph_grad_fac(c, sqrtf(r2))) * xib;
   });
   const float denominator = length2(sum_grad) + sum_grad2;
   const float scale = p.pos_mass[i].w * k.cubic / k.h;
@@ -162,22 +179,22 @@ SPH_HD inline float dfsph_density_rate(const SimConstants& c, const GridView& gr
   float rate = 0.0f;
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    rate += dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi - vel[j], xij);
+    rate += dfsph_mass(c, p, i, j) * dfsph_grad_fac(c, sqrtf(r2)) * dot(vi - vel[j], xij);
   });
   const Vec3 xi = xyz(p.pos_mass[i]);
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t image, Vec3 xg, float r2) {
     if (r2 > 0.0f)
-      rate += dfsph_mass(c, p, i, j) * cubic_spline_grad_fac(k, sqrtf(r2)) *
+      rate += dfsph_mass(c, p, i, j) * dfsph_grad_fac(c, sqrtf(r2)) *
               dot(vi - mirror_velocity(walls, image, vel[j]), xi - xg);
   });
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
-    if (r2 > 0.0f) rate += rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi, xib);
+    if (r2 > 0.0f) rate += rho0 * volume * dfsph_grad_fac(c, sqrtf(r2)) * dot(vi, xib);
   });
   // A rigid body's particles move with it: the rate sees v_i - v_b.
   for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3 vb) {
-    if (r2 > 0.0f) rate += rho0 * volume * cubic_spline_grad_fac(k, sqrtf(r2)) * dot(vi - vb, xib);
+    if (r2 > 0.0f) rate += rho0 * volume * dfsph_grad_fac(c, sqrtf(r2)) * dot(vi - vb, xib);
   });
   return rate;
 }
@@ -227,21 +244,21 @@ SPH_HD inline Vec3 dfsph_pressure_acceleration(const SimConstants& c, const Grid
   };
   for_each_neighbour(grid, p.pos_mass, i, k.h2, [&](int32_t j, Vec3 xij, float r2) {
     if (r2 <= 0.0f) return;
-    acc -= (pair(j) * cubic_spline_grad_fac(k, sqrtf(r2))) * xij;
+    acc -= (pair(j) * dfsph_grad_fac(c, sqrtf(r2))) * xij;
   });
   const Vec3 xi = xyz(p.pos_mass[i]);
   const NearWalls walls = c.mirror_walls ? near_walls(c, xi) : NearWalls{};
   for_each_ghost(c, grid, p, walls, i, [&](int32_t j, int32_t, Vec3 xg, float r2) {
-    if (r2 > 0.0f) acc -= (pair(j) * cubic_spline_grad_fac(k, sqrtf(r2))) * (xi - xg);
+    if (r2 > 0.0f) acc -= (pair(j) * dfsph_grad_fac(c, sqrtf(r2))) * (xi - xg);
   });
   // Boundary and body particles push with the particle's stiffness mirrored (kappa_b / rho_b = kappa_i / rho_i,
   // dfsph_boundary_hydrostatic adds the hydrostatic rest of P_b).
   const float rho0 = c.fluids[p.fluid[i]].rest_density;
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
-    if (r2 > 0.0f) acc -= (2.0f * rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    if (r2 > 0.0f) acc -= (2.0f * rho0 * volume * ki * dfsph_grad_fac(c, sqrtf(r2))) * xib;
   });
   for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
-    if (r2 > 0.0f) acc -= (2.0f * rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    if (r2 > 0.0f) acc -= (2.0f * rho0 * volume * ki * dfsph_grad_fac(c, sqrtf(r2))) * xib;
   });
   return acc;
 }
@@ -264,7 +281,7 @@ SPH_HD inline void dfsph_body_reaction(const SimConstants& c, const GridView& gr
   const float mi = p.pos_mass[i].w;
   for_each_body_particle(&bv, 1, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
     if (!(r2 > 0.0f)) return;
-    const Vec3 f = (2.0f * mi * rho0 * volume * ki * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+    const Vec3 f = (2.0f * mi * rho0 * volume * ki * dfsph_grad_fac(c, sqrtf(r2))) * xib;
     force += f;
     torque += cross(xi - bv.centre - xib, f);
   });
@@ -276,11 +293,11 @@ SPH_HD inline void dfsph_body_reaction(const SimConstants& c, const GridView& gr
 // P_b >= 0 (a wall never pulls), with P_i the pressure the last density solve ended with (p.pressure, of
 // which the warm start carries dfsph.warm_start_fraction; the clamp takes all of it). It does not depend on the stiffnesses, so it is a force of the step's forces phase. Returns the
 // acceleration of the fluid particle [m/s^2] from one such particle of volume V_b (0 < r2 < h^2).
-SPH_HD inline Vec3 dfsph_wall_hydrostatic_pair(const KernelCoeffs& k, Vec3 gravity, float rho0, float pressure_i,
+SPH_HD inline Vec3 dfsph_wall_hydrostatic_pair(const SimConstants& c, Vec3 gravity, float rho0, float pressure_i,
                                                Vec3 xib, float r2, float volume) {
   const float extra = -rho0 * dot(gravity, xib);
   const float kept = extra > -pressure_i ? extra : -pressure_i;
-  return (-volume * kept / rho0 * cubic_spline_grad_fac(k, sqrtf(r2))) * xib;
+  return (-volume * kept / rho0 * dfsph_grad_fac(c, sqrtf(r2))) * xib;
 }
 
 // Fluid particle i's acceleration from the hydrostatic part of every boundary and body particle's pressure
@@ -292,10 +309,10 @@ SPH_HD inline Vec3 dfsph_boundary_hydrostatic(const SimConstants& c, const GridV
   const Vec3 xi = xyz(p.pos_mass[i]);
   Vec3 acc{0.0f, 0.0f, 0.0f};
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
-    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(k, c.gravity, rho0, pi, xib, r2, volume);
+    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(c, c.gravity, rho0, pi, xib, r2, volume);
   });
   for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
-    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(k, c.gravity, rho0, pi, xib, r2, volume);
+    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(c, c.gravity, rho0, pi, xib, r2, volume);
   });
   return acc;
 }
@@ -316,7 +333,7 @@ SPH_HD inline void dfsph_body_hydrostatic_reaction(const SimConstants& c, const 
   const float mi = p.pos_mass[i].w;
   for_each_body_particle(&bv, 1, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
     if (!(r2 > 0.0f)) return;
-    const Vec3 f = -mi * dfsph_wall_hydrostatic_pair(k, c.gravity, rho0, pi, xib, r2, volume);
+    const Vec3 f = -mi * dfsph_wall_hydrostatic_pair(c, c.gravity, rho0, pi, xib, r2, volume);
     force += f;
     torque += cross(xi - bv.centre - xib, f);
   });

@@ -139,7 +139,7 @@ SPH_HD_ALWAYS_INLINE Vec3 laminar_viscosity_pair(const SimConstants& c, const Pa
   return Vec3{0.0f, 0.0f, 0.0f};
 }
 
-// Surface tension as cohesion between two particles of one fluid (guided_creation.h: the pair force
+// Surface tension as cohesion between two particles of one fluid (calibration.h: the pair force
 // -gamma m_a m_b C(r) x_ab / r of [AKT13] eq. 1 with their kernel C, eq. 2, and gamma calibrated from sigma in
 // N/m): particle a's acceleration, to be subtracted. Akinci's curvature term and the factor
 // K_ab = 2 rho0 / (rho_a + rho_b) are left out: the calibration counts the missing neighbours of a surface
@@ -296,7 +296,7 @@ SPH_HD inline void body_reaction(const SimConstants& c, const GridView& grid, co
 }
 
 // The cohesion between particle a and the other fluids' particles, which sets their interface tension
-// (SimConstants::cross_cohesion, guided_creation.h): a loop of its own after the forces loop
+// (SimConstants::cross_cohesion, calibration.h): a loop of its own after the forces loop
 // (src/solvers/surface_forces.h), run only where the scene gives an interface_tension; inside the forces loop
 // the table's lookup pushed the GPU kernel past its 80 registers into spills (ptxas, sm_90). [m/s^2]
 SPH_HD inline Vec3 interface_cohesion(const SimConstants& c, const GridView& grid, const ParticleView& p, int32_t a) {

@@ -18,41 +18,11 @@
 #include "cohesion_energy.h"
 #include "frame_reader.h"
 #include "grid.h"
-#include "lattice_sum.h"
 #include "obstacle_contacts.h"
 #include "time_step.h"
 #include "viscous_limit.h"
 
 namespace sph {
-
-double smoothing_length(double spacing, double neighbours) {
-  const double pi = kPiDouble;
-  return std::cbrt(3.0 * neighbours / (4.0 * pi)) * spacing;
-}
-
-double lattice_density_factor(double d, double h, bool cubic_spline) {
-  if (cubic_spline) {  // the kernel itself (kernels.h), summed in double
-    const KernelCoeffs k = make_kernel_coeffs(h);
-    return lattice_sum(d, h, [&](double r2) { return double(sph::cubic_spline(k, float(std::sqrt(r2)))); }) * d * d * d;
-  }
-  const double c = 315.0 / (64.0 * kPiDouble * std::pow(h, 9));
-  return lattice_sum(d, h, [&](double r2) { return c * std::pow(h * h - r2, 3); }) * d * d * d;
-}
-
-namespace {
-constexpr double kCohesionJ3 = 33.0 / 28672.0;  // int_0^1 q^3 c(q) dq, c: akinci_cohesion_shape
-constexpr double kCohesionJ4 = 21.0 / 28160.0;  // int_0^1 q^4 c(q) dq
-}  // namespace
-
-double cohesion_from_surface_tension(double sigma, double rest_density, double h) {
-  return 8.0 * sigma / (3.14159265358979323846 * rest_density * rest_density * std::pow(h, 5) * kCohesionJ4);
-}
-
-double cross_cohesion(double sigma_a, double sigma_b, double sigma_ab, double rho_a, double rho_b, double h) {
-  return 4.0 * (sigma_a + sigma_b - sigma_ab) / (kPiDouble * rho_a * rho_b * std::pow(h, 5) * kCohesionJ4);
-}
-
-double cohesion_pressure(double sigma, double h) { return 16.0 / 3.0 * (kCohesionJ3 / kCohesionJ4) * sigma / h; }
 
 namespace {
 
@@ -279,6 +249,7 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
   SimConstants& c = s.constants;
   c.solver = scene.solver;
   c.cubic_spline = wcsph_cubic_spline(scene) ? 1 : 0;
+  c.dfsph_poly6_spiky = dfsph_poly6_spiky(scene) ? 1 : 0;
   // The kernel sum over the lattice depends on h / d only: computed at d = 1 it cannot overflow.
   // With the run's density kernel (params.h, density_cubic_spline), so that its lattice start reads rho0.
   s.lattice_density = lattice_density_factor(1.0, s.h / s.spacing, density_cubic_spline(c));

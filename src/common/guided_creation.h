@@ -13,6 +13,7 @@
 #include "emitters.h"
 #include "particle_state.h"
 #include "scene.h"
+#include "calibration.h"
 
 namespace sph {
 
@@ -38,46 +39,6 @@ struct Setup {
   std::vector<std::string> report;
   bool adjusted = false;           // the checks changed what the scene asked for (refit, shared or removed points)
 };
-
-// Support radius from the mean neighbour count, thesis eq. 4.1: h = cbrt(3 V n_avg / (4 pi N)), with
-// V / N = d^3 for particles on a cubic lattice of spacing d.
-double smoothing_length(double spacing, double neighbours);
-
-// sum over the cubic lattice of spacing d of W(|x|, h), times d^3 (1 for a perfect quadrature), W Poly6 or
-// the cubic spline: the density kernel of the run (params.h, density_cubic_spline). At h = 1.97 d: 1.0069 and 0.9991.
-double lattice_density_factor(double spacing, double h, bool cubic_spline);
-
-// Whether the scene's WCSPH sums use the cubic spline (sph.kernel = cubic_spline; SimConstants::cubic_spline).
-inline bool wcsph_cubic_spline(const Scene& scene) {
-  return scene.solver == Solver::Wcsph && scene.kernel == KernelPair::CubicSpline;
-}
-
-// Surface tension sigma [N/m] as cohesion between particles of one fluid (forces.h), with the cohesion kernel
-// of Akinci, Akinci & Teschner 2013 (eq. 2, kernels.h: C(r) = 32 / (pi h^3) c(r / h)) as a pair force
-// F_ab = -gamma m_a m_b C(r) x_ab / r, calibrated from sigma by the mean-field (Kirkwood-Buff) surface
-// energy of a pair potential u with u'(r) = gamma m^2 C(r) in a fluid of number density n = rho0 / m:
-// cutting the fluid costs sigma = -(pi / 2) n^2 int r^3 u dr = (pi / 8) n^2 int_0^h r^4 u'(r) dr
-// = (pi / 8) rho0^2 gamma (32 / pi) h^2 J4, J4 = int_0^1 q^4 c(q) dq = 21 / 28160 (exact), so
-// gamma = sigma / (4 rho0^2 h^2 J4) (Tartakovsky & Panchenko 2016 calibrate their pairwise force so).
-// Returns the fluid's cohesion constant gamma 32 / (pi h^3) = 8 sigma / (pi rho0^2 h^5 J4) [m / (kg s^2)]:
-// a_a = -constant sum_b m_b c(r / h) x_ab / r. Unlike Akinci's gamma, sigma carries its units: the force
-// per particle does not change with the resolution or the mass, and a drop's Laplace pressure and
-// oscillation period follow from sigma (tests/test_surface_tension.cpp).
-double cohesion_from_surface_tension(double sigma, double rest_density, double h);
-
-// The cohesion between particles of two different fluids a and b that gives their interface the tension
-// sigma_ab [N/m], in the mean-field picture of cohesion_from_surface_tension: parting the two fluids costs
-// the work W_ab = (pi / 4) rho0_a rho0_b K_ab h^5 J4 per area (the cohesion's 2 sigma with one fluid), and
-// Dupre's relation sigma_ab = sigma_a + sigma_b - W_ab gives K_ab = 4 (sigma_a + sigma_b - sigma_ab) /
-// (pi rho0_a rho0_b h^5 J4) [m / (kg s^2)]: a_a = -K_ab sum_b m_b c(r / h) x_ab / r, the pair force
-// -K_ab m_a m_b c x_ab / r equal and opposite. sigma_ab = sigma_a + sigma_b: 0 (the fluids ignore each other);
-// below it they attract, above it they repel.
-double cross_cohesion(double sigma_a, double sigma_b, double sigma_ab, double rho_a, double rho_b, double h);
-
-// The cohesion's internal pressure [Pa], the virial of the pair force in the bulk,
-// (2 pi / 3) n^2 int r^3 u'(r) dr = (16 / 3) (J3 / J4) sigma / h = 8.23 sigma / h, J3 = 33 / 28672: the
-// equation of state must hold it, so it compresses the fluid by about this / (rho0 c0^2).
-double cohesion_pressure(double sigma, double h);
 
 // The speed bound when the energy check cannot give one (a user force doing work) [m/s]:
 // limits.blowup_speed, or ten times the fastest of the speeds of sound and the jets (weakly compressible

@@ -159,7 +159,7 @@ SPH_HD inline float gradient_dwdr(const KernelCoeffs& k, bool cubic, float r) {
 //   c(q) = (1 - q)^3 q^3               for 1/2 < q < 1,
 //   c(q) = 2 (1 - q)^3 q^3 - 1 / 64    for 0 < q <= 1/2,
 // 0 beyond. Attractive (c > 0) from q = 0.273 to 1, repulsive below, so cohesion does not pull particles into
-// pairs. Returns c(q); the 32 / (pi h^3) goes into the fluid's cohesion constant (guided_creation.h).
+// pairs. Returns c(q); the 32 / (pi h^3) goes into the fluid's cohesion constant (calibration.h).
 SPH_HD inline float akinci_cohesion_shape(float q) {
   if (q >= 1.0f) return 0.0f;
   const float d = 1.0f - q;

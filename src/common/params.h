@@ -136,7 +136,7 @@ struct FluidConstants {
   float viscosity;         // mu [Pa s] for Mueller and Morris
   float artificial_alpha;  // alpha for Monaghan artificial viscosity
   float near_stiffness;    // k_near [m^2/s^2], P_near = k_near rho_near (thesis 3.1); 0 disables
-  float cohesion;          // 8 sigma / (pi rho0^2 h^5 J4) [m/(kg s^2)], cohesion from sigma (guided_creation.h); 0 disables
+  float cohesion;          // 8 sigma / (pi rho0^2 h^5 J4) [m/(kg s^2)], cohesion from sigma (calibration.h); 0 disables
   float csf_sigma;         // sigma / chi [N/m] of the continuum surface force (surface_tension_csf.h)
   // sigma_ab / chi [N/m] at the fluid's interface with the other fluid of an interface tension under the
   // continuum surface force (surface_tension_csf.h); 0: none
@@ -219,6 +219,9 @@ struct SimConstants {
   // XSPH terms use the cubic spline in place of Poly6 and Spiky (kernels.h, density_kernel, gradient_dwdr).
   // 0 under DFSPH and PBF, whose own sums have their own kernels (dfsph.h, pbf.h).
   int32_t cubic_spline;
+  // 1: DFSPH with sph.kernel = "poly6_spiky" given in the scene: its density, rate, alpha and pressure
+  // accelerations take Poly6 for W and Spiky's grad W in place of the cubic spline (dfsph.h, dfsph_w). 0 else.
+  int32_t dfsph_poly6_spiky;
   // The continuum surface force's limit on a particle's curvature, relative to its neighbours' mean
   // (surface_tension_csf.h, csf_limited_curvature): kCsfCurvatureSpread, or -1 for none (Scene's
   // csf_curvature_limit, which only tests turn off).
@@ -255,7 +258,7 @@ struct SimConstants {
   int32_t num_shapes;
   FluidConstants fluids[kMaxFluids];
   // The cohesion constant between particles of two different fluids a != b [m/(kg s^2)] (as
-  // FluidConstants::cohesion; guided_creation.h, cross_cohesion), symmetric, from the scene's
+  // FluidConstants::cohesion; calibration.h, cross_cohesion), symmetric, from the scene's
   // interface_tension; 0: no cohesion between them. Negative: they repel (an interface tension above
   // sigma_a + sigma_b).
   float cross_cohesion[kMaxFluids][kMaxFluids];
@@ -263,12 +266,14 @@ struct SimConstants {
   GridGeometry grid;
 };
 
-// Whether the run's summed density uses the cubic spline: DFSPH always ([BK15], dfsph.h), WCSPH where
-// sph.kernel = cubic_spline; else Poly6. The interface tension's colours take the same kernel, and the mass and
+// Whether the run's summed density uses the cubic spline: DFSPH unless the scene asks for Poly6 with Spiky
+// ([BK15], dfsph.h), WCSPH where sph.kernel = cubic_spline; else Poly6. The interface tension's colours take the same kernel, and the mass and
 // the boundary particles' volumes are calibrated with it (lattice_density_factor), so that the start's lattice
 // reads rho0. (Until 2026-12-02 DFSPH's masses took Poly6's lattice sum: its lattice started 0.78% below rho0
 // and every resting DFSPH column first fell by that, at up to 0.15 m/s; docs/results.md, "DFSPH's mass from
 // the cubic spline".)
-SPH_HD inline bool density_cubic_spline(const SimConstants& c) { return c.solver == Solver::Dfsph || c.cubic_spline != 0; }
+SPH_HD inline bool density_cubic_spline(const SimConstants& c) {
+  return (c.solver == Solver::Dfsph && c.dfsph_poly6_spiky == 0) || c.cubic_spline != 0;
+}
 
 }  // namespace sph

@@ -27,7 +27,7 @@ struct FluidSpec {
   double viscosity = 1e-3;         // mu [Pa s], the laminar viscosity (Mueller or Morris, sph.viscosity)
   double artificial_viscosity = 0.05; // alpha of Monaghan's artificial viscosity, added to any laminar model; 0 = off
   double near_stiffness = 0.0;     // k_near, m^2/s^2; 0 = no double density relaxation
-  double surface_tension = 0.0;    // sigma [N/m], cohesion calibrated to it (guided_creation.h); 0 = off
+  double surface_tension = 0.0;    // sigma [N/m], cohesion calibrated to it (calibration.h); 0 = off
   double xsph = 0.0;               // XSPH epsilon; 0 = off
   // Equilibrium contact angle [degrees] on boundary particles, (0, 180]: Akinci's adhesion calibrated to it
   // (cohesion_energy.h, adhesion_constant); 0 (the key absent) = no adhesion term.
@@ -64,7 +64,7 @@ struct EmitterSpec {
 };
 
 // An interface tension between two fluids (scene key "interface_tension", cohesion model): sigma_ab [N/m],
-// set by a cohesion between their particles (guided_creation.h, cross_cohesion). Pairs not listed meet with
+// set by a cohesion between their particles (calibration.h, cross_cohesion). Pairs not listed meet with
 // sigma_a + sigma_b (no attraction between them).
 struct InterfaceTensionSpec {
   int a = 0, b = 0;     // fluid indices, a != b
@@ -187,7 +187,7 @@ struct Scene {
   EquationOfState eos = EquationOfState::Tait;
   PressureForm pressure_form = PressureForm::MonaghanSymmetric;
   KernelPair kernel = KernelPair::Poly6Spiky;
-  bool kernel_set = false;  // sph.kernel given: said to be ignored under DFSPH and PBF (their own kernels)
+  bool kernel_set = false;  // sph.kernel given: DFSPH then takes it (dfsph.h); PBF says it ignores "cubic_spline"
   ViscosityModel viscosity = ViscosityModel::Morris;
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)

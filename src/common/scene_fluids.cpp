@@ -70,7 +70,7 @@ void check_surface_tension(const Scene& scene, double h) {
     throw SceneError(os.str());
   }
   // An interface tension's cohesion between two fluids is that of one fluid with sigma = |sigma_a + sigma_b -
-  // sigma_ab| / 2 (guided_creation.h, cross_cohesion): the same limit on each side's equation of state.
+  // sigma_ab| / 2 (calibration.h, cross_cohesion): the same limit on each side's equation of state.
   for (std::size_t k = 0; k < scene.interface_tensions.size(); ++k) {
     const InterfaceTensionSpec& t = scene.interface_tensions[k];
     const double sigma = 0.5 * std::fabs(scene.fluids[std::size_t(t.a)].surface_tension +

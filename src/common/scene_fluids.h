@@ -18,7 +18,7 @@ namespace sph {
 void check_fluid_ratios(const Scene& scene);
 
 // Surface tension against the equation of state (WCSPH): the cohesion's internal pressure
-// (cohesion_pressure, guided_creation.h) may compress a fluid by at most kCohesionCompressionLimit, i.e.
+// (cohesion_pressure, calibration.h) may compress a fluid by at most kCohesionCompressionLimit, i.e.
 // 8.23 sigma / h <= limit rho0 c0^2 (SceneError naming fluids.N.speed_of_sound and its least value
 // otherwise). Under a softer fluid the cohesion crushes the drop it should shape: a 0.1 m cube with
 // sigma = 4 N/m and c0 = 5 m/s (compression 10%) flew apart. The same for each interface tension's cohesion

@@ -118,7 +118,7 @@ void check_float_range(const Scene& scene, double spacing, double h, double latt
     q.push_back({"Tait's B = rho0 c0^2 / 7", key + ".speed_of_sound",
                  std::log(f.rest_density) + 2.0 * std::log(f.speed_of_sound) - std::log(7.0), 0.0});
     if (f.viscosity > 0.0) q.push_back({"the viscosity", key + ".viscosity", std::log(f.viscosity), 0.0});
-    // The cohesion constant 8 sigma / (pi rho0^2 h^5 J4) (guided_creation.h) and what it multiplies, the mass.
+    // The cohesion constant 8 sigma / (pi rho0^2 h^5 J4) (calibration.h) and what it multiplies, the mass.
     if (f.surface_tension > 0.0)
       q.push_back({"the cohesion constant 8 sigma / (pi rho0^2 h^5 J4)", key + ".surface_tension",
                    std::log(cohesion_from_surface_tension(f.surface_tension, f.rest_density, 1.0)) - 5.0 * lh, -5.0});

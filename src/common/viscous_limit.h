@@ -97,7 +97,7 @@ inline double lattice_viscous_symbol(ViscosityModel model, bool cubic, double h_
 
 // lambda_max [1/s] of the scene's viscosity (0 for none or artificial viscosity, which the sound limit
 // covers): particles of fluid a on the lattice of spacing d [m] at their lattice density
-// rho_a = m_a lattice_density / d^3 (lattice_density: the density kernel's lattice sum, guided_creation.h), support
+// rho_a = m_a lattice_density / d^3 (lattice_density: the density kernel's lattice sum, calibration.h), support
 // h [m]. With w_b = mu m K(r_b / d) / (d^5 rho^2) this is lambda_a = mu_a d S / (m_a lattice_density^2),
 // S the unit-lattice symbol; Morris pairs of different fluids use (mu_a + mu_max) / 2.
 inline double viscous_rate(const SimConstants& c, double spacing, double h, double lattice_density) {

@@ -29,6 +29,7 @@
 #include "../solvers/step.h"
 #include "device_arrays.h"
 #include "device_constants.h"
+#include "device_diagnostics.h"
 #include "device_faults.h"
 #include "device_grid.h"
 #include "device_interop.h"
@@ -54,11 +55,6 @@ struct PackPositionFn {
   SPH_KERNEL_FN void operator()(int32_t i) const { pack_position(*c, p, i); }
 };
 
-
-
-
-
-
 // Recycle: whether each particle stays, in a loop of its own, so that the stable selection that follows
 // (CUB's select kernel) reads flags only: with this test as its predicate it spilled registers (ptxas).
 struct KeepFn {
@@ -81,49 +77,6 @@ inline bool particles_can_expire(const SimConstants& c) {
     if (c.shapes[s].absorb) return true;
   return false;
 }
-
-// Diagnostics as a deterministic reduction: ties go to the lower index, as in the serial reference.
-struct Diag {
-  float max_speed;
-  int32_t fastest;
-  float max_accel;
-  int32_t non_finite;
-  SPH_HD static Diag none() { return Diag{0.0f, -1, 0.0f, -1}; }  // of no particle: the reduction's identity
-};
-
-struct DiagOfFn {
-  ParticleView p;
-  const int32_t* kept;  // when set, particles from *kept on were recycled by this step and do not count
-  SPH_HD Diag operator()(int32_t i) const {
-    if (kept != nullptr && i >= *kept) return Diag::none();
-    const Vec3 x = p.pos[i], v = p.vel[i];
-    const float sum = x.x + x.y + x.z + v.x + v.y + v.z;
-    const bool finite = sum - sum == 0.0f;  // false for NaN and infinities
-    return Diag{finite ? length(v) : 0.0f, finite ? i : -1, finite ? length(p.acc[i]) : 0.0f, finite ? -1 : i};
-  }
-};
-
-struct DiagCombineFn {
-  SPH_HD Diag operator()(const Diag& a, const Diag& b) const {
-    Diag r;
-    const bool take_a = a.fastest >= 0 && (b.fastest < 0 || a.max_speed > b.max_speed ||
-                                            (a.max_speed == b.max_speed && a.fastest < b.fastest));
-    r.max_speed = take_a ? a.max_speed : b.max_speed;
-    r.fastest = take_a ? a.fastest : b.fastest;
-    r.max_accel = a.max_accel > b.max_accel ? a.max_accel : b.max_accel;
-    r.non_finite = a.non_finite < 0 ? b.non_finite : (b.non_finite < 0 || a.non_finite < b.non_finite ? a.non_finite : b.non_finite);
-    return r;
-  }
-};
-
-// What a step leaves for the host, read in one copy (device_readback.h): the diagnostics, how many
-// particles it kept when it recycled on cuda, and how many blocks its grid has (device_grid.h: the tables'
-// capacity grows from it).
-struct StepSummary {
-  Diag diag;
-  int32_t kept;
-  int32_t blocks;
-};
 
 // ---- the back end -----------------------------------------------------------------------------------------
 
