@@ -10,7 +10,8 @@
 // a crystal does (to shear it, particles must pass through compressed places), so a weak flow stalls as if the
 // fluid had a yield stress; the pair, whose density and gradient disagree a little, melts it. Measured
 // (2026-12-03, the rayleigh_taylor slab, 0.01 m deep; docs/results.md, "DFSPH's kernel"): the interface over
-// its start at 0.2 s 1.63 with the cubic spline, 3.10 with the pair, linear theory 3.86 (WCSPH 3.08). The
+// its start at 0.2 s 1.63 with the cubic spline, 3.10 with the pair, linear theory 3.86 (WCSPH 3.08); the
+// oil_drop rose at 0.189 m/s with the cubic spline, 0.238 with the pair (WCSPH 0.240). The
 // pair's cost: a resting column rings more (rms 4.4 against 0.04 mm/s with warm_start_fraction 0.75) and the
 // prediction and the next step's density disagree by the kernels' difference, so it is not the default.
 // Neighbours: every particle
