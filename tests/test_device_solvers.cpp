@@ -166,6 +166,9 @@ TEST_CASE("device solvers: DFSPH with Poly6 and Spiky (sph.kernel given), mirror
                                                                "sph.kernel=poly6_spiky", "sph.walls=particles"});
   for (const sph::Scene* scene : {&layers, &tank}) {
     INFO(scene->name);
+    // The flag is set (the cpu reference depends on it: tests/test_multiphase.cpp, test_dfsph_formulas.cpp),
+    // so host matching cpu bit for bit means host honours it too.
+    REQUIRE(sph::create_setup(*scene, 0.1).constants.dfsph_poly6_spiky == 1);
     check_solver_case(*scene, 30);
   }
 }

@@ -233,3 +233,55 @@ TEST_CASE("DFSPH pressure acceleration conserves linear momentum on a random clo
   CHECK(seed_total > 1e-3 * magnitude);
   CHECK(seed_total > 1e4 * length(total));
 }
+
+TEST_CASE("DFSPH with Poly6 and Spiky: alpha equals a brute force and still undoes a particle's own error", "[dfsph]") {
+  // sph.kernel = "poly6_spiky" under DFSPH (SimConstants::dfsph_poly6_spiky, dfsph.h dfsph_w): the density
+  // sums Poly6, every gradient is Spiky's. Written out here in double: W = 315 / (64 pi h^9) (h^2 - r^2)^3,
+  // dW/dr = -45 / (pi h^6) (h - r)^2 [Mueller 2003].
+  const double pi = 3.14159265358979323846;
+  const auto poly6 = [&](double r) { return r < kH ? 315.0 / (64.0 * pi * std::pow(kH, 9)) * std::pow(kH * kH - r * r, 3) : 0.0; };
+  const auto spiky_dwdr = [&](double r) { return r < kH ? -45.0 / (pi * std::pow(kH, 6)) * (kH - r) * (kH - r) : 0.0; };
+  const int n = 7;
+  FormulaCloud cloud(lattice(n), kH, kMass, kRho0);
+  sph::SimConstants c = cloud.c();
+  c.dfsph_poly6_spiky = 1;
+  sph::ParticleView p = cloud.view();
+  for (int32_t i = 0; i < cloud.size(); ++i) p.density[i] = sph::dfsph_density(c, cloud.grid(), p, i);
+  for (int32_t i = 0; i < cloud.size(); ++i) {
+    double rho = 0.0, sx = 0.0, sy = 0.0, sz = 0.0, s2 = 0.0;
+    for (int32_t j = 0; j < cloud.size(); ++j) {
+      const double dx = double(p.pos[i].x) - p.pos[j].x, dy = double(p.pos[i].y) - p.pos[j].y,
+                   dz = double(p.pos[i].z) - p.pos[j].z;
+      const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+      rho += kMass * poly6(r);
+      if (r == 0.0) continue;
+      const double g = kMass * spiky_dwdr(r) / r;
+      sx += g * dx;
+      sy += g * dy;
+      sz += g * dz;
+      s2 += g * g * r * r;
+    }
+    const double alpha = rho / (sx * sx + sy * sy + sz * sz + s2);
+    const float got = sph::dfsph_alpha(c, cloud.grid(), p, i);
+    INFO("particle " << i << ": rho " << p.density[i] << " (brute force " << rho << "), alpha " << got
+                     << " (brute force " << alpha << ")");
+    REQUIRE(std::fabs(p.density[i] - rho) <= 1e-5 * rho);
+    REQUIRE(std::fabs(got - alpha) <= 1e-4 * alpha);
+    // Not the cubic spline's: the two kernels' sums differ by percents.
+    REQUIRE(std::fabs(sph::dfsph_density(cloud.c(), cloud.grid(), p, i) - p.density[i]) > 1e-3f * p.density[i]);
+  }
+  // alpha is the inverse of d(D rho_i / Dt) / d kappa_i whatever the kernel, as long as the rate and the
+  // pressure acceleration share the gradient: one interior particle's error is undone in one step.
+  int32_t i = -1;
+  for (int32_t a = 0; a < cloud.size() && i < 0; ++a)
+    if (interior_of_lattice(p.pos[a], n, float(kH))) i = a;
+  REQUIRE(i >= 0);
+  const float dt = 1e-3f, error = 2.5f;
+  std::vector<float> kappa(std::size_t(cloud.size()), 0.0f);
+  kappa[std::size_t(i)] = sph::dfsph_density_stiffness(kRho0 + error, kRho0, sph::dfsph_alpha(c, cloud.grid(), p, i), dt);
+  std::vector<Vec3> dv(std::size_t(cloud.size()));
+  for (int32_t a = 0; a < cloud.size(); ++a) dv[std::size_t(a)] = dt * sph::dfsph_pressure_acceleration(c, cloud.grid(), p, kappa.data(), a);
+  const float change = dt * sph::dfsph_density_rate(c, cloud.grid(), p, dv.data(), i);
+  INFO("density change " << change << " kg/m^3 for an error of " << error);
+  CHECK(std::fabs(change + error) <= 1e-4f * error);
+}

@@ -316,7 +316,7 @@ TEST_CASE("Rayleigh-Taylor under DFSPH with the cubic spline stalls below linear
                                   << std::cosh(r.theory * r.t_end) << ")");
   CHECK_FALSE(r.blew_up);
   CHECK(r.rate == 0.0);
-  CHECK(r.a_end > r.a0);  // it grows at first (1.6 a0), then stalls
+  CHECK(r.a_end > 1.3 * r.a0);  // it grows at first (1.63 a0 measured), then stalls
 }
 
 TEST_CASE("DFSPH takes sph.kernel when the scene gives it, calibrates its masses with it and says when it stalls",

@@ -25,7 +25,10 @@ double mean(const std::vector<double>& v) {
 void print_solver_summary(const Simulation& sim) {
   const Scene& scene = sim.scene();
   const SolverTotals& t = sim.solver_totals();
-  std::cout << "solver: " << solver_name(scene.solver) << "\n";
+  std::cout << "solver: " << solver_name(scene.solver);
+  if (scene.solver == Solver::Dfsph)
+    std::cout << (sim.setup().constants.dfsph_poly6_spiky ? ", sph.kernel: poly6_spiky" : ", sph.kernel: cubic_spline");
+  std::cout << "\n";
   // The rigid bodies where the run left them.
   for (const RigidBody& b : sim.backend().bodies())
     std::cout << "body: " << b.label << ": centre (" << b.centre[0] << ", " << b.centre[1] << ", " << b.centre[2]

@@ -10,7 +10,7 @@
 // a crystal does (to shear it, particles must pass through compressed places), so a weak flow stalls as if the
 // fluid had a yield stress; the pair, whose density and gradient disagree a little, melts it. Measured
 // (2026-12-03, the rayleigh_taylor slab, 0.01 m deep; docs/results.md, "DFSPH's kernel"): the interface over
-// its start at 0.2 s 1.63 with the cubic spline, 3.10 with the pair, linear theory 3.86 (WCSPH 3.08); the
+// its start at 0.2 s 1.63 with the cubic spline, 3.14 with the pair, linear theory 3.86 (WCSPH 3.08); the
 // oil_drop rose at 0.189 m/s with the cubic spline, 0.238 with the pair (WCSPH 0.240). The
 // pair's cost: a resting column rings more (rms 4.4 against 0.04 mm/s with warm_start_fraction 0.75) and the
 // prediction and the next step's density disagree by the kernels' difference, so it is not the default.
@@ -57,7 +57,7 @@ namespace sph {
 // Below this fraction of (m_i sigma / h)^2, sigma = 8 / (pi h^3), the denominator of alpha counts as zero: a
 // particle with no neighbour in reach (or only neighbours at the rim of the support) gets alpha = 0 and so no
 // pressure, instead of a division by zero. (m_i sigma / h is the size of one m grad W term of the cubic
-// spline; in the bulk of a lattice with h = 1.95 d the denominator is about 15 of those squared, so only
+// spline, and the same scale serves under Poly6 with Spiky, whose gradient is of that order; in the bulk of a lattice with h = 1.95 d the denominator is about 15 of those squared, so only
 // isolated particles and those with neighbours only at the rim of the support are affected.)
 constexpr float kDfsphAlphaEps = 1e-6f;
 

@@ -144,7 +144,7 @@ SPH_HD inline float cubic_spline_dwdr(const KernelCoeffs& k, float r) {
 
 // WCSPH's kernel pair (scene key sph.kernel, SimConstants::cubic_spline): Poly6 for the density and Spiky for
 // every gradient [Mueller 2003] (thesis eqs. 2.44, 2.45, the default), or the cubic spline for both
-// [Monaghan 1992; Becker & Teschner 2007], the kernel DFSPH always uses ([BK15]). One kernel for the density
+// [Monaghan 1992; Becker & Teschner 2007], DFSPH's default ([BK15]; dfsph.h, dfsph_w). One kernel for the density
 // and its gradient is what holds a drop's pressure at Laplace's 2 sigma / R (+5% against Poly6 with Spiky's
 // +29%, docs/results.md): with two, the summed density and the pressure force disagree on how much the
 // surface's missing neighbours weigh.

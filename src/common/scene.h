@@ -180,7 +180,7 @@ struct Scene {
   //   their ghosts never pull (mirror_walls.h, push_only).
   // Kernels (sph.kernel): Poly6 density with Spiky's pressure gradient, the thesis's pair and the default;
   // it is not conservative (the pressure force is no energy's gradient), which is why some dissipation is
-  // part of the default. "cubic_spline" takes the cubic spline for both [BT07], as DFSPH always does: it
+  // part of the default. "cubic_spline" takes the cubic spline for both [BT07], DFSPH's default: it
   // holds a drop's pressure at Laplace's value, and the 16k dam break's surge front halves its error against
   // the experiment, where the column's height moves farther from it (docs/results.md).
   DensityMethod density = DensityMethod::Summation;
