@@ -51,6 +51,29 @@ bool interior_of_lattice(Vec3 x, int n, float margin) {
   return sph_test::interior(x, lo, lo + float(n - 1) * kSpacing * Vec3{1.0f, 1.0f, 1.0f}, margin);
 }
 
+// [BK15]'s density and alpha of particle i by brute force over every particle, in double, with the kernel
+// W(r) and dW/dr(r) given: rho = sum m W, alpha = rho / (|sum m grad W|^2 + sum |m grad W|^2).
+struct BruteForce {
+  double rho, alpha;
+};
+template <class W, class DwDr>
+BruteForce brute_force_alpha(const sph::ParticleView& p, int32_t count, int32_t i, W w, DwDr dwdr) {
+  double rho = 0.0, sx = 0.0, sy = 0.0, sz = 0.0, s2 = 0.0;
+  for (int32_t j = 0; j < count; ++j) {
+    const double dx = double(p.pos[i].x) - p.pos[j].x, dy = double(p.pos[i].y) - p.pos[j].y,
+                 dz = double(p.pos[i].z) - p.pos[j].z;
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    rho += kMass * w(r);
+    if (r == 0.0) continue;
+    const double g = kMass * dwdr(r) / r;
+    sx += g * dx;
+    sy += g * dy;
+    sz += g * dz;
+    s2 += g * g * r * r;
+  }
+  return {rho, rho / (sx * sx + sy * sy + sz * sz + s2)};
+}
+
 }  // namespace
 
 TEST_CASE("DFSPH alpha on a lattice equals a double-precision brute force", "[dfsph]") {
@@ -61,20 +84,8 @@ TEST_CASE("DFSPH alpha on a lattice equals a double-precision brute force", "[df
   int interior = 0;
   float interior_alpha = -1.0f;
   for (int32_t i = 0; i < cloud.size(); ++i) {
-    double rho = 0.0, sx = 0.0, sy = 0.0, sz = 0.0, s2 = 0.0;
-    for (int32_t j = 0; j < cloud.size(); ++j) {
-      const double dx = double(p.pos[i].x) - p.pos[j].x, dy = double(p.pos[i].y) - p.pos[j].y,
-                   dz = double(p.pos[i].z) - p.pos[j].z;
-      const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-      rho += kMass * sph_test::seed_cubic_w(r, kH);
-      if (r == 0.0) continue;
-      const double g = kMass * sph_test::seed_cubic_dwdr(r, kH) / r;
-      sx += g * dx;
-      sy += g * dy;
-      sz += g * dz;
-      s2 += g * g * r * r;
-    }
-    const double alpha = rho / (sx * sx + sy * sy + sz * sz + s2);
+    const auto [rho, alpha] = brute_force_alpha(p, cloud.size(), i, [](double r) { return sph_test::seed_cubic_w(r, kH); },
+                                                [](double r) { return sph_test::seed_cubic_dwdr(r, kH); });
     const float got = sph::dfsph_alpha(cloud.c(), cloud.grid(), p, i);
     INFO("particle " << i << ": rho " << p.density[i] << " (brute force " << rho << "), alpha " << got
                      << " (brute force " << alpha << ")");
@@ -248,20 +259,7 @@ TEST_CASE("DFSPH with Poly6 and Spiky: alpha equals a brute force and still undo
   sph::ParticleView p = cloud.view();
   for (int32_t i = 0; i < cloud.size(); ++i) p.density[i] = sph::dfsph_density(c, cloud.grid(), p, i);
   for (int32_t i = 0; i < cloud.size(); ++i) {
-    double rho = 0.0, sx = 0.0, sy = 0.0, sz = 0.0, s2 = 0.0;
-    for (int32_t j = 0; j < cloud.size(); ++j) {
-      const double dx = double(p.pos[i].x) - p.pos[j].x, dy = double(p.pos[i].y) - p.pos[j].y,
-                   dz = double(p.pos[i].z) - p.pos[j].z;
-      const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-      rho += kMass * poly6(r);
-      if (r == 0.0) continue;
-      const double g = kMass * spiky_dwdr(r) / r;
-      sx += g * dx;
-      sy += g * dy;
-      sz += g * dz;
-      s2 += g * g * r * r;
-    }
-    const double alpha = rho / (sx * sx + sy * sy + sz * sz + s2);
+    const auto [rho, alpha] = brute_force_alpha(p, cloud.size(), i, poly6, spiky_dwdr);
     const float got = sph::dfsph_alpha(c, cloud.grid(), p, i);
     INFO("particle " << i << ": rho " << p.density[i] << " (brute force " << rho << "), alpha " << got
                      << " (brute force " << alpha << ")");
