@@ -16,6 +16,11 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+// ", sph.kernel: ..." for DFSPH's kernel (src/common/dfsph.h, dfsph_w).
+const char* dfsph_kernel_text(const SimConstants& c) {
+  return c.dfsph_poly6_spiky ? ", sph.kernel: poly6_spiky" : ", sph.kernel: cubic_spline";
+}
+
 double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
 }
@@ -27,7 +32,7 @@ void print_solver_summary(const Simulation& sim) {
   const SolverTotals& t = sim.solver_totals();
   std::cout << "solver: " << solver_name(scene.solver);
   if (scene.solver == Solver::Dfsph)
-    std::cout << (sim.setup().constants.dfsph_poly6_spiky ? ", sph.kernel: poly6_spiky" : ", sph.kernel: cubic_spline");
+    std::cout << dfsph_kernel_text(sim.setup().constants);
   std::cout << "\n";
   // The rigid bodies where the run left them.
   for (const RigidBody& b : sim.backend().bodies())
@@ -96,7 +101,7 @@ void print_setup(const RunDescription& o, const Scene& scene, Simulation& sim, c
                                                     (st.constants.cubic_spline ? ", sph.kernel: cubic_spline" : ", sph.kernel: poly6_spiky")
                                               : std::string());
   if (scene.solver == Solver::Dfsph) {
-    std::cout << (st.constants.dfsph_poly6_spiky ? ", sph.kernel: poly6_spiky" : ", sph.kernel: cubic_spline")
+    std::cout << dfsph_kernel_text(st.constants)
               << ", chebyshev: " << scene.dfsph.chebyshev;
     if (scene.dfsph.warm_start) std::cout << ", warm_start_fraction: " << scene.dfsph.warm_start_fraction;
     else std::cout << ", warm start: off";

@@ -294,9 +294,9 @@ SPH_HD inline void dfsph_body_reaction(const SimConstants& c, const GridView& gr
 // P_b >= 0 (a wall never pulls), with P_i the pressure the last density solve ended with (p.pressure, of
 // which the warm start carries dfsph.warm_start_fraction; the clamp takes all of it). It does not depend on the stiffnesses, so it is a force of the step's forces phase. Returns the
 // acceleration of the fluid particle [m/s^2] from one such particle of volume V_b (0 < r2 < h^2).
-SPH_HD inline Vec3 dfsph_wall_hydrostatic_pair(const SimConstants& c, Vec3 gravity, float rho0, float pressure_i,
+SPH_HD inline Vec3 dfsph_wall_hydrostatic_pair(const SimConstants& c, float rho0, float pressure_i,
                                                Vec3 xib, float r2, float volume) {
-  const float extra = -rho0 * dot(gravity, xib);
+  const float extra = -rho0 * dot(c.gravity, xib);
   const float kept = extra > -pressure_i ? extra : -pressure_i;
   return (-volume * kept / rho0 * dfsph_grad_fac(c, sqrtf(r2))) * xib;
 }
@@ -310,10 +310,10 @@ SPH_HD inline Vec3 dfsph_boundary_hydrostatic(const SimConstants& c, const GridV
   const Vec3 xi = xyz(p.pos_mass[i]);
   Vec3 acc{0.0f, 0.0f, 0.0f};
   for_each_boundary(grid.boundary, xi, k.h2, [&](int32_t, Vec3 xib, float r2, float volume) {
-    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(c, c.gravity, rho0, pi, xib, r2, volume);
+    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(c, rho0, pi, xib, r2, volume);
   });
   for_each_body_particle(grid.bodies, grid.num_bodies, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
-    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(c, c.gravity, rho0, pi, xib, r2, volume);
+    if (r2 > 0.0f) acc += dfsph_wall_hydrostatic_pair(c, rho0, pi, xib, r2, volume);
   });
   return acc;
 }
@@ -334,7 +334,7 @@ SPH_HD inline void dfsph_body_hydrostatic_reaction(const SimConstants& c, const 
   const float mi = p.pos_mass[i].w;
   for_each_body_particle(&bv, 1, xi, k.h2, [&](int32_t, int32_t, Vec3 xib, float r2, float volume, Vec3) {
     if (!(r2 > 0.0f)) return;
-    const Vec3 f = -mi * dfsph_wall_hydrostatic_pair(c, c.gravity, rho0, pi, xib, r2, volume);
+    const Vec3 f = -mi * dfsph_wall_hydrostatic_pair(c, rho0, pi, xib, r2, volume);
     force += f;
     torque += cross(xi - bv.centre - xib, f);
   });
