@@ -300,7 +300,7 @@ sph_cli_test(solver_step_too_long
      --set time_step.dt=0.05 --out ${SPH_CLI_OUT}/solver_step_too_long)
 sph_cli_test(dfsph_tank_20_steps
   --exit 0 --clean ${SPH_CLI_OUT}/dfsph_tank
-  --stdout-line "solver: dfsph" --stdout-line "steps: 20" --stdout-prefix "density_solver_iterations: mean "
+  --stdout-line "solver: dfsph, sph.kernel: cubic_spline" --stdout-line "steps: 20" --stdout-prefix "density_solver_iterations: mean "
   --stdout-prefix "divergence_solver_iterations: mean " --stdout-prefix "solver_capped_steps: "
   --csv-column ${SPH_CLI_OUT}/dfsph_tank/metrics.csv solver_iterations
   --csv-column ${SPH_CLI_OUT}/dfsph_tank/metrics.csv solver_density_error
