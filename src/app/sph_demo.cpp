@@ -26,6 +26,7 @@
 #include "../render/screenshot.h"
 #include "../render/ui_panel.h"
 #include "backends.h"
+#include "demo_controls.h"
 #include "demo_options.h"
 #include "demo_window.h"
 #include "demo_replay.h"
@@ -297,17 +298,15 @@ class Demo {
     const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && !ui_mouse;
     const bool right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && !ui_mouse;
     SimConstants c = base_;
-    apply_panel(c);
+    apply_panel(panel_, base_, c, sim_->time_step());
     const float g = length(base_.gravity);
-    const Vec3 g0 = base_.gravity;
-    // Tilt: rotate gravity about z (left/right) and x (up/down).
-    const float cz = std::cos(tilt_z_), sz = std::sin(tilt_z_), cx = std::cos(tilt_x_), sx = std::sin(tilt_x_);
-    Vec3 gr{cz * g0.x - sz * g0.y, sz * g0.x + cz * g0.y, g0.z};
-    gr = Vec3{gr.x, cx * gr.y - sx * gr.z, sx * gr.y + cx * gr.z};
+    const Vec3 gr = tilted_gravity(base_.gravity, tilt_x_, tilt_z_);
     c.gravity = gr + Vec3{push * 0.5f * std::max(g, 9.81f), 0.0f, 0.0f};
     c.user_force.strength = 0.0f;
     if (ctrl && (left || right)) {
-      c.user_force.point = cursor_point(mx, my);
+      int w = 0, h = 0;
+      glfwGetWindowSize(window_, &w, &h);
+      c.user_force.point = cursor_point(camera_, w, h, mx, my);
       c.user_force.radius = 0.15f * length(hi_ - lo_);
       c.user_force.strength = (left ? 3.0f : -3.0f) * std::max(g, 9.81f);
     } else if (left) {
@@ -318,33 +317,6 @@ class Demo {
       camera_.pan(dx / float(std::max(h, 1)), dy / float(std::max(h, 1)));
     }
     sim_->set_constants(c);
-  }
-
-  // Panel values onto the constants of every fluid.
-  void apply_panel(SimConstants& c) const {
-    for (int32_t f = 0; f < c.num_fluids; ++f) {
-      FluidConstants& fc = c.fluids[f];
-      const float scale_mu = base_.fluids[0].viscosity > 0.0f ? panel_.viscosity / base_.fluids[0].viscosity : 1.0f;
-      fc.viscosity = base_.fluids[0].viscosity > 0.0f ? base_.fluids[f].viscosity * scale_mu : panel_.viscosity;
-      fc.speed_of_sound = panel_.speed_of_sound;
-      fc.tait_b = fc.rest_density * fc.speed_of_sound * fc.speed_of_sound / 7.0f;
-      fc.near_stiffness = panel_.near_stiffness;
-    }
-    c.near_enabled = panel_.near_stiffness > 0.0f;
-    TimeStepSpec& ts = sim_->time_step();
-    if (ts.mode == TimeStepMode::Fixed) ts.dt = panel_.dt_max; else ts.max = panel_.dt_max;
-  }
-
-  // The point under the cursor on the plane through the camera target, facing the camera.
-  Vec3 cursor_point(double mx, double my) const {
-    int w = 0, h = 0;
-    glfwGetWindowSize(window_, &w, &h);
-    const float ndc_x = float(2.0 * mx / std::max(w, 1) - 1.0), ndc_y = float(1.0 - 2.0 * my / std::max(h, 1));
-    const Mat4 v = camera_.view();
-    const Vec3 right{v[0], v[4], v[8]}, up{v[1], v[5], v[9]};
-    const float half = std::tan(0.5f * camera_.fovy) * camera_.distance;
-    const float aspect = float(w) / float(std::max(h, 1));
-    return camera_.target + (ndc_x * half * aspect) * right + (ndc_y * half) * up;
   }
 
   // CUDA back end: the kernels write the VBOs through CUDA-OpenGL interop, no copy through the host. Where
