@@ -182,12 +182,13 @@ struct Scene {
   // it is not conservative (the pressure force is no energy's gradient), which is why some dissipation is
   // part of the default. "cubic_spline" takes the cubic spline for both [BT07], DFSPH's default: it
   // holds a drop's pressure at Laplace's value, and the 16k dam break's surge front halves its error against
-  // the experiment, where the column's height moves farther from it (docs/results.md).
+  // the experiment, where the column's height moves farther from it (docs/results.md). Without the key a
+  // WCSPH scene with the continuum surface force takes it too (calibration.h, wcsph_cubic_spline).
   DensityMethod density = DensityMethod::Summation;
   EquationOfState eos = EquationOfState::Tait;
   PressureForm pressure_form = PressureForm::MonaghanSymmetric;
   KernelPair kernel = KernelPair::Poly6Spiky;
-  bool kernel_set = false;  // sph.kernel given: DFSPH then takes it (dfsph.h); PBF says it ignores "cubic_spline"
+  bool kernel_set = false;  // sph.kernel given: DFSPH and WCSPH's continuum surface force then take it; PBF says it ignores "cubic_spline"
   ViscosityModel viscosity = ViscosityModel::Morris;
   bool clamp_negative_pressure = true;
   bool mirror_walls = true;            // sph.walls: "mirror" (mirror_walls.h) or "penalty" (thesis 3.5.1)

@@ -30,16 +30,17 @@ constexpr int32_t kPbfMultiphaseIterations = 10;
 // sph.surface_tension = "csf") and no artificial viscosity unless pbf.artificial_viscosity asks for it (XSPH
 // is its own); the laminar viscosity acts under every solver.
 void report_ignored_settings(const Scene& scene, std::vector<std::string>& report) {
-  // A fluid's surface tension under the continuum surface force.
-  const bool csf_tension = scene.surface_tension_model == SurfaceTensionModel::Csf &&
-                           std::any_of(scene.fluids.begin(), scene.fluids.end(),
-                                       [](const FluidSpec& f) { return f.surface_tension > 0.0; });
   if (scene.solver == Solver::Wcsph) {
-    // Not ignored, but known to be off: docs/results.md, "One kernel for WCSPH".
-    if (csf_tension && !wcsph_cubic_spline(scene))
+    // Not ignored, but chosen for the user or known to be off: docs/results.md, "One kernel for WCSPH".
+    if (csf_surface_tension(scene) && !scene.kernel_set)
+      report.push_back("note: under WCSPH the continuum surface force takes the cubic spline for the density and every "
+                       "gradient (without sph.kernel): with Poly6 and Spiky a drop's pressure stood 15 to 32% above "
+                       "Laplace's 2 sigma / R, with one kernel within 10%; sph.kernel = \"poly6_spiky\" takes the pair "
+                       "(docs/results.md, \"One kernel for WCSPH\")");
+    else if (csf_surface_tension(scene) && !wcsph_cubic_spline(scene))
       report.push_back("note: under WCSPH with sph.kernel = \"poly6_spiky\" the continuum surface force holds a drop's "
-                       "pressure 15 to 32% above Laplace's 2 sigma / R; sph.kernel = \"cubic_spline\" holds it within 10% "
-                       "(docs/results.md)");
+                       "pressure 15 to 32% above Laplace's 2 sigma / R; sph.kernel = \"cubic_spline\" (or no sph.kernel) "
+                       "holds it within 10% (docs/results.md)");
     return;
   }
   const std::string name = solver_name(scene.solver);
@@ -112,7 +113,7 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
     if (f.surface_tension > 0.0) mu = std::min(mu, laminar_model ? f.viscosity : 0.0);
   const bool xsph = scene.pbf.xsph_c >= kPbfCsfXsph;
   const bool damped = mu >= kPbfCsfViscosity ? !xsph : xsph;
-  if (csf_tension && !(plain && damped)) {
+  if (csf_surface_tension(scene) && !(plain && damped)) {
     std::ostringstream os;
     os << "note: under solver \"pbf\" the continuum surface force held a 0.1 m drop together, in the tests, with the "
        << "paper's plain iteration (pbf.jacobi_weight = 1, pbf.chebyshev = 0) and either a laminar viscosity of at least "
