@@ -455,7 +455,8 @@ TEST_CASE("the continuum surface force rings at Rayleigh's period, the cohesion 
   // iteration). Without the surface's offset from the particles (csf_surface_curvature) it was 12% short
   // (measured). At 16 across the lattice makes the box 19 x 18 x 16 particles, nearly as long along y as along
   // x, and under DFSPH q2's first minimum comes early (0.19 s): the first two minima are 16% short of
-  // Rayleigh's period, the half periods after them within 1% (docs/results.md, "Rayleigh's period under DFSPH at two resolutions").
+  // Rayleigh's period, the half periods after them within 1% (docs/results.md, "Rayleigh's period under DFSPH
+  // at two resolutions").
   struct Case {
     int across;
     std::string solver, kernel;
