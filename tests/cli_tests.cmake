@@ -229,6 +229,16 @@ sph_cli_test(energy_gain
   -- ${SPH_RUN} ${SPH_CLI_SCENES}/dam_break.json --set sph.negative_pressure=keep --set sph.viscosity=mueller --set fluids.0.artificial_viscosity=0
      --set resolution.particles_across=10 --frames-every 0 --quiet --out ${SPH_CLI_OUT}/energy_gain)
 
+# --- a drop whose surface tension outruns its damping: exit 3 naming the surface tension, metrics kept ----
+# drop_oscillation at 1000 N/m gains more kinetic energy than its lost area can release within 10 steps
+# (before the budget counted only that, it flew apart and the run ended with exit 0).
+sph_cli_test(surface_tension_energy_gain
+  --exit 3 --clean ${SPH_CLI_OUT}/sigma_gain
+  --stderr "became unstable" --stderr "kinetic energy" --stderr "surface energy" --stderr "fluids.N.surface_tension"
+  --stderr "Ohnesorge" --file ${SPH_CLI_OUT}/sigma_gain/metrics.csv
+  -- ${SPH_RUN} ${SPH_CLI_SCENES}/drop_oscillation.json --set fluids.0.surface_tension=1000 --time 0.1
+     --frames-every 0 --quiet --out ${SPH_CLI_OUT}/sigma_gain)
+
 # --- a good run: thesis 5.2 cube, 3 steps ---------------------------------------------------------------
 set(_csv ${SPH_CLI_OUT}/perf_cube/metrics.csv)
 set(_columns)

@@ -223,7 +223,8 @@ TEST_CASE("device models: interface tension under the continuum surface force (D
 
 TEST_CASE("device models: interface tension between two fluids", "[device][models][interface]") {
   // Issue 15: the cohesion between two fluids (forces.h, interface_cohesion), a loop of its own.
-  const sph::Scene scene = scene_file("interface_drop.json", {"resolution.spacing=0.01"});
+  const sph::Scene scene = scene_file("interface_drop.json", {"resolution.spacing=0.01", "sph.surface_tension=cohesion",
+                                                              "solver=wcsph"});
   REQUIRE(!scene.interface_tensions.empty());
   check_case(scene, {{"interface tension", [](sph::SimConstants& c) { c.interface_cohesion_enabled = 0; }}}, 60);
 }

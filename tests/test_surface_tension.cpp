@@ -7,6 +7,8 @@
 // force does both (below: Laplace's pressure under DFSPH, and under WCSPH with the cubic spline kernel).
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -203,12 +205,11 @@ TEST_CASE("under PBF without a laminar viscosity, XSPH at c = 0.1 holds the drop
     CHECK(r.ke_max < r.released);
   }
   // The method where it fails: c = 0.01 leaves the collapse almost undamped, PBF's corrections feed the
-  // surface's motion (the kinetic energy grows past what the lost area releases) and particles leave the drop.
-  const DropRun r = run_drop(12, 0.6, {"solver=pbf", "fluids.0.viscosity=0"});
-  INFO("c = 0.01: outermost particle " << r.outermost << " m, volume-equivalent " << r.equivalent << " m; kinetic energy at most "
-                                       << r.ke_max << " J, released " << r.released << " J");
-  CHECK(r.outermost > 2.0 * r.equivalent);
-  CHECK(r.ke_max > r.released);
+  // surface's motion and particles leave the drop (0.42 m from its centre at 0.6 s, docs/results.md). The
+  // kinetic energy grows past what the lost area releases, and since the budget counts only that for a free
+  // drop (cohesion_energy.h, least_surface_energy) the energy check stops the run (0.087 J at 0.38 s).
+  CHECK_THROWS_WITH(run_drop(12, 0.6, {"solver=pbf", "fluids.0.viscosity=0"}),
+                    Contains("kinetic energy") && Contains("surface tension"));
 }
 
 TEST_CASE("the set-up note names the damping and the iteration with which PBF's continuum surface force held a drop",
@@ -374,6 +375,33 @@ TEST_CASE("the energy budget counts the surface energy of the start", "[surface_
   const long with_excess = long(std::count_if(x.begin(), x.end(), [](double v) { return v > 1e-9; }));
   CHECK(with_excess < 6 * 16 * 16 * 2);
   CHECK(with_excess > 6 * 14 * 14);
+}
+
+TEST_CASE("a free drop's energy budget is what its lost area can release, and a drop that gains more stops",
+          "[surface_tension][energy]") {
+  // Continuum surface force, no solid about the fluid: the budget counts sigma times the start's area (the
+  // lattice cube's, 6 (12 d)^2) less the ball's area of its volume, below which no shape goes.
+  const double sigma = 4.7, pi = 3.14159265358979323846;
+  sph::Simulation free(scene_file("drop_oscillation.json", {"resolution.particles_across=12"}), cpu_factory(), 1.0);
+  const double volume = double(free.particles().size()) * free.setup().constants.fluids[0].mass / 1000.0;
+  const double side = 12.0 * free.setup().spacing;
+  const double released = sigma * (6.0 * side * side - 4.0 * pi * std::pow(3.0 * volume / (4.0 * pi), 2.0 / 3.0));
+  INFO("budget " << free.energy_budget() << " J, sigma (A_cube - A_ball) = " << released << " J");
+  CHECK(free.energy_budget() == Approx(released).epsilon(0.01));
+  // In a container the fluid may spread on a wall (a half ball on a plate has 0.79 of a ball's free area):
+  // no such bound, and the budget keeps the start's whole surface energy (the cohesion's estimate of it).
+  std::ifstream in(std::string(SPH_SOURCE_DIR) + "/scenes/drop_oscillation.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string::size_type at = text.find("\"gravity\"");
+  REQUIRE(at != std::string::npos);
+  text.insert(at, R"("boundaries": [ { "type": "box", "min": [-0.2, -0.2, -0.2], "max": [0.2, 0.2, 0.2] } ], )");
+  sph::Simulation boxed(sph::parse_scene(text, "drop_in_a_box.json", {"resolution.particles_across=12"}), cpu_factory(), 1.0);
+  CHECK(boxed.energy_budget() > 2.0 * released);
+  // A cube whose surface tension outruns its damping: at 1000 N/m (Ohnesorge number 0.0055 at the spacing)
+  // it gained 16 J within 10 steps, where it can release 11.7 J, and flew apart; before, the budget's margin
+  // (it counted all of sigma A_cube, 44 J) let the run end with exit 0 and every particle outside the domain.
+  CHECK_THROWS_WITH(run_drop(12, 0.1, {"fluids.0.surface_tension=1000"}),
+                    Contains("kinetic energy") && Contains("surface tension") && Contains("Ohnesorge"));
 }
 
 TEST_CASE("a fluid too soft for its surface tension is refused with the least speed of sound", "[surface_tension][scene]") {

@@ -106,4 +106,42 @@ std::vector<double> cohesion_excess_energy(const SimConstants& c, const Particle
   return excess;
 }
 
+std::vector<double> lattice_surface_energy(const Scene& scene, const SimConstants& c, const ParticleState& ps, double spacing) {
+  std::vector<double> energy(ps.size(), 0.0);
+  if (ps.size() == 0) return energy;
+  const HostNeighbours neighbours(ps, c.kernel.h, [&](std::size_t a) { return ps.age[a] < kRemovedAge; });
+  const double d = spacing, tolerance2 = 0.0625 * d * d;
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    const double sigma = scene.fluids[ps.fluid[a]].surface_tension;
+    if (sigma == 0.0 || ps.age[a] >= kRemovedAge) continue;
+    bool covered[6] = {};  // +x, -x, +y, -y, +z, -z
+    neighbours.for_each_same_fluid(a, [&](std::size_t, Vec3 x) {  // x = x_a - x_b: b at the site x_a + d e
+      const double bx = -double(x.x), by = -double(x.y), bz = -double(x.z);
+      for (int e = 0; e < 6; ++e) {
+        const double s = e % 2 ? -d : d;
+        const double ex = bx - (e / 2 == 0 ? s : 0.0), ey = by - (e / 2 == 1 ? s : 0.0), ez = bz - (e / 2 == 2 ? s : 0.0);
+        if (ex * ex + ey * ey + ez * ez < tolerance2) covered[e] = true;
+      }
+    });
+    int open = 0;
+    for (bool k : covered) open += k ? 0 : 1;
+    energy[a] = sigma * d * d * open / double(c.fluids[ps.fluid[a]].mass);
+  }
+  return energy;
+}
+
+std::optional<double> least_surface_energy(const Scene& scene, const SimConstants& c, const ParticleState& ps) {
+  if (!c.csf_enabled || !scene.boundaries.empty() || !scene.meshes.empty() || !scene.bodies.empty() ||
+      !scene.interface_tensions.empty())
+    return std::nullopt;
+  double volume[kMaxFluids] = {};
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.age[i] < kRemovedAge) volume[ps.fluid[i]] += double(c.fluids[ps.fluid[i]].mass) / c.fluids[ps.fluid[i]].rest_density;
+  const double pi = 3.14159265358979323846;
+  double least = 0.0;
+  for (int32_t f = 0; f < c.num_fluids; ++f)
+    least += scene.fluids[std::size_t(f)].surface_tension * 4.0 * pi * std::pow(3.0 * volume[f] / (4.0 * pi), 2.0 / 3.0);
+  return least;
+}
+
 }  // namespace sph

@@ -3,13 +3,16 @@
 // and a particle at a surface misses part of the bulk's (negative) share of it. Summed, that excess is the
 // surface energy sigma A of the calibration (calibration.h); cohesion can turn at most this into motion
 // (a cube pulling into a sphere releases sigma times the area it loses), so a drop that gains more is
-// flagged as unstable like any other energy gain.
+// flagged as unstable like any other energy gain. Under the continuum surface force, with no solid about
+// the fluid, the budget counts sigma times the start's area less the ball's sigma A it cannot go below.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "params.h"
 #include "particle_state.h"
+#include "scene.h"
 
 namespace sph {
 
@@ -53,5 +56,21 @@ double csf_contact_energy(double sigma, double contact_angle_deg, double spacing
 // filled with its fluid [J/kg], e_a = 1/2 sum_b u(r_ab) over the particles of its fluid, (e_a - e_bulk) / m_a,
 // at least 0. All zero (and no neighbour search) where no fluid has surface tension. ps: positions, fluids.
 std::vector<double> cohesion_excess_energy(const SimConstants& c, const ParticleState& ps, double spacing);
+
+// Per particle of ps, its share of the surface energy of its fluid's sigma [J/kg]: sigma d^2 / m for each of
+// the six faces of its lattice cell (spacing d [m]) beyond which no particle of its fluid stands within d / 4
+// of the next lattice site. Summed with the masses: sigma times the area of the union of the particles' cells
+// where the fluid stands on a cubic lattice, as emitters lay it out (a box's own area); elsewhere more (a
+// particle away from the lattice counts up to all six faces), so a budget built on it is never too small.
+// Zero for fluids without sigma.
+std::vector<double> lattice_surface_energy(const Scene& scene, const SimConstants& c, const ParticleState& ps, double spacing);
+
+// The least surface energy [J] the fluids of ps can reach under the continuum surface force, where the
+// isoperimetric inequality gives it: a fluid of volume V (its particles' mass over rest density) has at
+// least the area of a ball, 4 pi (3 V / (4 pi))^(2/3), in one piece or in many, so sigma times that is
+// never released. Only where nothing else bounds the fluid: no container, wall, obstacle, mesh or body (a
+// fluid spread on a solid has less free surface: a half ball on a plate 0.79 of a ball's) and no interface
+// tension between fluids. std::nullopt elsewhere, and under the cohesion model.
+std::optional<double> least_surface_energy(const Scene& scene, const SimConstants& c, const ParticleState& ps);
 
 }  // namespace sph
