@@ -147,6 +147,22 @@ TEST_CASE("under PBF with the scene's artificial viscosity two layers at density
   CHECK(r.v99_end < 0.1);
 }
 
+TEST_CASE("under PBF the set-up names the damping and the iterations that several fluids need",
+          "[multiphase][pbf][scene]") {
+  auto notes = [](const std::vector<std::string>& sets) {
+    const sph::Setup s = sph::create_setup(scene_file("two_layers.json", sets), 1.0);
+    std::string all;
+    for (const std::string& line : s.report) all += line + "\n";
+    return all;
+  };
+  const std::string plain = notes({"solver=pbf"});
+  CHECK_THAT(plain, Contains("pbf.artificial_viscosity = true") && Contains("do not come to rest"));
+  CHECK_THAT(plain, Contains("pbf.iterations >= 10") && Contains("a light drop rising"));
+  CHECK_THAT(notes({"solver=pbf", "pbf.artificial_viscosity=true", "pbf.iterations=10"}),
+             !Contains("do not come to rest") && !Contains("pbf.iterations >= 10"));
+  CHECK_THAT(notes({"solver=pbf", "fluids.1.rest_density=1000"}), !Contains("do not come to rest"));
+}
+
 TEST_CASE("under PBF two layers at density ratio 10 are thrown about when the neighbours' masses are summed",
           "[multiphase][pbf]") {
   sph::Scene scene = scene_file("two_layers.json", {"solver=pbf"});

@@ -25,8 +25,8 @@ json override_value(const std::string& text, const std::string& value_text, cons
   if (value_text.empty() || *end != '\0') return value_text;
   if (!std::isfinite(x))
     throw SceneError(source + ": --set \"" + text + "\": " + value_text +
-                     " is not a finite number (allowed: magnitudes below about 1.8e308); to give it as text, "
-                     "quote it as a JSON string");
+                     " is not a finite number (allowed: magnitudes below about 1.8e308); only a key that takes "
+                     "text takes it, quoted as a JSON string: \"" + value_text + "\"");
   return x;
 }
 
