@@ -152,6 +152,7 @@ class Simulation {
   double mass_in_ = 0.0;
   double max_specific_in_ = 0.0;
   double potential_reference_ = 0.0;
+  double surface_in_ = 0.0;  // the budget's share of surface energy [J] (rebase_energy()): names the blow-up's cause
   bool floor_bounded_ = true;
 
   void relax(const BackendFactory& factory);
