@@ -349,6 +349,20 @@ TEST_CASE("under WCSPH the continuum surface force takes the cubic spline unless
   CHECK(choice({"solver=dfsph"}).laplace_note.empty());
 }
 
+TEST_CASE("without gravity the set-up says what the cohesion does to a drop and names the continuum surface force",
+          "[surface_tension][scene]") {
+  auto noted = [](const std::string& scene, const std::vector<std::string>& sets) {
+    const sph::Setup s = sph::create_setup(scene_file(scene, sets), 1.0);
+    return std::any_of(s.report.begin(), s.report.end(), [](const std::string& line) {
+      return line.find("settles like an elastic solid") != std::string::npos && line.find("\"csf\"") != std::string::npos;
+    });
+  };
+  CHECK(noted("drop_oscillation.json", {"sph.surface_tension=cohesion"}));
+  CHECK(noted("drop_oscillation.json", {"sph.surface_tension=cohesion", "solver=wcsph"}));
+  CHECK_FALSE(noted("drop_oscillation.json", {}));                    // the scene's continuum surface force
+  CHECK_FALSE(noted("wetting.json", {"resolution.particles_across=6"}));  // the cohesion under gravity: drops on walls
+}
+
 TEST_CASE("the energy budget counts the surface energy of the start", "[surface_tension][energy]") {
   // The excess cohesive energy of a lattice cube scales with its area: 8^3 and 16^3 particles.
   sph::Scene scene = scene_file("drop_oscillation.json", {"resolution.particles_across=8", "solver=wcsph",

@@ -30,6 +30,18 @@ constexpr int32_t kPbfMultiphaseIterations = 10;
 // sph.surface_tension = "csf") and no artificial viscosity unless pbf.artificial_viscosity asks for it (XSPH
 // is its own); the laminar viscosity acts under every solver.
 void report_ignored_settings(const Scene& scene, std::vector<std::string>& report) {
+  // A drop under the cohesion (the default model) without gravity: measured (docs/results.md, "Several fluids
+  // and surface tension"), it rounds into a ball but settles like an elastic solid instead of ringing, and its
+  // bulk holds the cohesion's own pressure, not Laplace's; tests/test_surface_tension.cpp.
+  const Vec3d& g = scene.gravity;
+  const bool weightless = g[0] == 0.0 && g[1] == 0.0 && g[2] == 0.0;
+  const bool cohesive = scene.surface_tension_model == SurfaceTensionModel::Cohesion &&
+                        std::any_of(scene.fluids.begin(), scene.fluids.end(), [](const FluidSpec& f) { return f.surface_tension > 0.0; });
+  if (weightless && cohesive && scene.solver != Solver::Pbf)
+    report.push_back("note: with the cohesion (sph.surface_tension = \"cohesion\", the default) a drop rounds into a ball "
+                     "but settles like an elastic solid instead of ringing, and its pressure is the cohesion's (8.23 sigma / h), "
+                     "not Laplace's 2 sigma / R; sph.surface_tension = \"csf\" rings at Rayleigh's period and holds Laplace's "
+                     "pressure (docs/results.md)");
   if (scene.solver == Solver::Wcsph) {
     // Not ignored, but chosen for the user or known to be off: docs/results.md, "One kernel for WCSPH".
     if (csf_surface_tension(scene) && !scene.kernel_set)
