@@ -298,9 +298,18 @@ int run(const Options& o) {
               << "one spacing is past a wall's first layer of boundary particles, where the wall no longer holds it: a "
               << "leak; deepest_in_solid and particles_in_solids in metrics.csv say when). A finer resolution, "
               << "thicker walls or a smaller time_step.max may help\n";
-  if (worst.most_outside > 0)
-    std::cerr << "warning: " << worst.most_outside << " particles left the domain (the container or \"domain\" with a band of 2 h); "
-              << "they are still simulated, but the domain does not enclose the fluid: check the boundaries\n";
+  if (worst.most_outside > 0) {
+    // The domain of guided creation (make_grid): the scene's "domain", else its first box container, else the
+    // fluid's start with half its size around it.
+    bool container = sim.scene().has_domain;
+    for (const BoundarySpec& b : sim.scene().boundaries) container = container || (b.shape.type == ShapeType::Box && b.shape.keep_inside);
+    std::cerr << "warning: " << worst.most_outside << " particles left the domain ("
+              << (container ? "the container or \"domain\" with a band of 2 h); they are still simulated, but the domain "
+                              "does not enclose the fluid: check the boundaries\n"
+                            : "no box container or \"domain\" given: the fluid's start with half its size around it and a "
+                              "band of 2 h); they are still simulated. Give \"domain\" to enclose where the fluid goes, or "
+                              "look in the frames for particles thrown off the fluid's surface\n");
+  }
   std::cout << "metrics: " << csv.path() << (frame > first_frame ? ", frames: " + std::to_string(frame - first_frame) : std::string())
             << (surfaces_written > 0 ? ", surface meshes: " + std::to_string(surfaces_written) : std::string()) << "\n";
   std::cout.flush();
