@@ -25,6 +25,15 @@ inline bool csf_surface_tension(const Scene& scene) {
   return false;
 }
 
+// Whether the scene is a free drop under the continuum surface force: a fluid with sigma under it, and no
+// container, wall, obstacle, mesh or body and no interface tension. There the surface is closed and bounds
+// nothing, so its force sums to zero (the drop's momentum is kept: surface_forces.h) and its area cannot go
+// below a ball's (the energy budget: cohesion_energy.h).
+inline bool csf_free_drop(const Scene& scene) {
+  return csf_surface_tension(scene) && scene.boundaries.empty() && scene.meshes.empty() && scene.bodies.empty() &&
+         scene.interface_tensions.empty();
+}
+
 // Whether the scene's WCSPH sums use the cubic spline (SimConstants::cubic_spline): when sph.kernel says
 // "cubic_spline", and without the key when the continuum surface force acts. With the Poly6 density and
 // Spiky's gradient (WCSPH's default pair) that force's drop held its pressure 15 to 32% above Laplace's

@@ -348,6 +348,10 @@ void build_setup(const Scene& scene, double run_time, Setup& s, double& estimate
     // (cohesion_energy.h), as a fluid's own cohesion does.
     if (k != 0.0f && !csf) c.interface_cohesion_enabled = 1;
   }
+  // Not under PBF, which applies the force at the end of its step: with the correction its 12-across drop
+  // under the paper's plain iteration lost a particle that it keeps without (docs/results.md, "A free drop
+  // keeps its momentum").
+  c.csf_momentum = csf_free_drop(scene) && scene.solver != Solver::Pbf ? 1 : 0;
   s.viscous_rate = viscous_rate(c, s.spacing, s.h, s.lattice_density);
   c.artificial_rate = float(artificial_viscous_rate(c, s.spacing, s.h, s.lattice_density));
   c.substep_rate = float(double(c.artificial_rate) + s.viscous_rate);

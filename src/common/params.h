@@ -240,6 +240,10 @@ struct SimConstants {
   // An interface tension between two fluids under the continuum surface force (surface_tension_csf.h): each
   // particle's force takes its share of the interface's tension.
   int32_t csf_interface_enabled;
+  // 1: each fluid's net continuum surface force is removed at every step (surface_forces.h): a free drop (no
+  // wall, obstacle, mesh or body, no interface tension; calibration.h, csf_free_drop) under WCSPH or DFSPH,
+  // where the force on a closed surface sums to zero, but on the particles did not (its centre drifted).
+  int32_t csf_momentum;
   int32_t xsph_enabled;             // any fluid with xsph > 0
   int32_t artificial_enabled;       // any fluid with artificial_alpha > 0: Monaghan's term on every pair
   float artificial_rate;            // lambda_max of that term [1/s] (viscous_limit.h)

@@ -303,6 +303,12 @@ SPH_HD inline float csf_limited_curvature(const SimConstants& c, const GridView&
   return own > mean + spread ? mean + spread : (own < mean - spread ? mean - spread : own);
 }
 
+// Whether particle i has a normal (|n| h above kCsfNormalFloor): the particles the force acts on.
+SPH_HD inline bool csf_has_normal(const SimConstants& c, const ParticleView& p, int32_t i) {
+  const Vec3 ni = p.surface_normal[i];
+  return sqrtf(dot(ni, ni)) * c.kernel.h > kCsfNormalFloor;
+}
+
 SPH_HD inline Vec3 csf_acceleration(const SimConstants& c, const ParticleView& p, int32_t i) {
   const FluidConstants& f = c.fluids[p.fluid[i]];
   return (f.csf_sigma * p.curvature[i] / f.rest_density) * p.surface_normal[i];
