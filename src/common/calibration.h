@@ -16,13 +16,17 @@ double smoothing_length(double spacing, double neighbours);
 // the cubic spline: the density kernel of the run (params.h, density_cubic_spline). At h = 1.97 d: 1.0069 and 0.9991.
 double lattice_density_factor(double spacing, double h, bool cubic_spline);
 
-// Whether a fluid of the scene has a surface tension and the scene gives it by the continuum surface force
-// (sph.surface_tension = "csf"; surface_tension_csf.h).
-inline bool csf_surface_tension(const Scene& scene) {
-  if (scene.surface_tension_model != SurfaceTensionModel::Csf) return false;
+// Whether a fluid of the scene has a surface tension (fluids.N.surface_tension > 0), under either model.
+inline bool any_surface_tension(const Scene& scene) {
   for (const FluidSpec& f : scene.fluids)
     if (f.surface_tension > 0.0) return true;
   return false;
+}
+
+// Whether a fluid of the scene has a surface tension and the scene gives it by the continuum surface force
+// (sph.surface_tension = "csf"; surface_tension_csf.h).
+inline bool csf_surface_tension(const Scene& scene) {
+  return scene.surface_tension_model == SurfaceTensionModel::Csf && any_surface_tension(scene);
 }
 
 // Whether the scene is a free drop under the continuum surface force: a fluid with sigma under it, and no

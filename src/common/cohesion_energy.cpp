@@ -132,7 +132,7 @@ std::vector<double> lattice_surface_energy(const Scene& scene, const SimConstant
 }
 
 std::optional<double> least_surface_energy(const Scene& scene, const SimConstants& c, const ParticleState& ps) {
-  if (!c.csf_enabled || !csf_free_drop(scene)) return std::nullopt;
+  if (!csf_free_drop(scene)) return std::nullopt;
   double volume[kMaxFluids] = {};
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (ps.age[i] < kRemovedAge) volume[ps.fluid[i]] += double(c.fluids[ps.fluid[i]].mass) / c.fluids[ps.fluid[i]].rest_density;

@@ -35,8 +35,7 @@ void report_ignored_settings(const Scene& scene, std::vector<std::string>& repor
   // bulk holds the cohesion's own pressure, not Laplace's; tests/test_surface_tension.cpp.
   const Vec3d& g = scene.gravity;
   const bool weightless = g[0] == 0.0 && g[1] == 0.0 && g[2] == 0.0;
-  const bool cohesive = scene.surface_tension_model == SurfaceTensionModel::Cohesion &&
-                        std::any_of(scene.fluids.begin(), scene.fluids.end(), [](const FluidSpec& f) { return f.surface_tension > 0.0; });
+  const bool cohesive = scene.surface_tension_model == SurfaceTensionModel::Cohesion && any_surface_tension(scene);
   if (weightless && cohesive && scene.solver != Solver::Pbf)
     report.push_back("note: with the cohesion (sph.surface_tension = \"cohesion\", the default) a drop rounds into a ball "
                      "but settles like an elastic solid instead of ringing, and its pressure is the cohesion's (8.23 sigma / h), "

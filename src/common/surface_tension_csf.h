@@ -279,11 +279,17 @@ SPH_HD inline float csf_curvature(const SimConstants& c, const GridView& grid, c
 // under DFSPH; none from 12 to 24 across with it), but WCSPH's Poly6 and Spiky box then rang 12% short of
 // Rayleigh's period (17% with 2 times the mean; 5.6% with this bound, 2.9% before it; its test asks 10%).
 constexpr float kCsfCurvatureSpread = 0.5f;
+
+// Whether particle i has a normal (|n| h above kCsfNormalFloor): the particles the force acts on.
+SPH_HD inline bool csf_has_normal(const SimConstants& c, const ParticleView& p, int32_t i) {
+  const Vec3 ni = p.surface_normal[i];
+  return sqrtf(dot(ni, ni)) * c.kernel.h > kCsfNormalFloor;
+}
+
 SPH_HD inline float csf_limited_curvature(const SimConstants& c, const GridView& grid, const ParticleView& p,
                                           int32_t i) {
   const KernelCoeffs& k = c.kernel;
-  const Vec3 ni = p.surface_normal[i];
-  if (!(sqrtf(dot(ni, ni)) * k.h > kCsfNormalFloor)) return 0.0f;  // no normal, as csf_curvature reads it
+  if (!csf_has_normal(c, p, i)) return 0.0f;  // no normal, as csf_curvature reads it
   const float own = p.curvature_own[i];
   const float own_or_none = own == kCsfNoCurvature ? 0.0f : own;
   if (c.csf_curvature_spread < 0.0f) return own_or_none;
@@ -301,12 +307,6 @@ SPH_HD inline float csf_limited_curvature(const SimConstants& c, const GridView&
   if (own == kCsfNoCurvature) return mean;
   const float spread = c.csf_curvature_spread * fabsf(mean);
   return own > mean + spread ? mean + spread : (own < mean - spread ? mean - spread : own);
-}
-
-// Whether particle i has a normal (|n| h above kCsfNormalFloor): the particles the force acts on.
-SPH_HD inline bool csf_has_normal(const SimConstants& c, const ParticleView& p, int32_t i) {
-  const Vec3 ni = p.surface_normal[i];
-  return sqrtf(dot(ni, ni)) * c.kernel.h > kCsfNormalFloor;
 }
 
 SPH_HD inline Vec3 csf_acceleration(const SimConstants& c, const ParticleView& p, int32_t i) {
